@@ -1,0 +1,97 @@
+#!/usr/bin/env bash
+# Set-up, build, main job and tests of OTParam on Debian 12, as root (or with sudo).
+#
+#   bash .ci/otparam.sh main [output dir]   install packages, build, run the example
+#   bash .ci/otparam.sh test                install packages, build, run every test (ctest),
+#                                           then the core's unit tests with ASan + UBSan
+#   bash .ci/otparam.sh setup               install packages and build only
+#
+# Environment: OTPARAM_BUILD_DIR (default <repo>/build), OTPARAM_ASAN_BUILD_DIR (default
+# <repo>/build-asan), OTPARAM_JOBS (default: number of cores). apt-get install is idempotent,
+# so every run installs (or confirms) the packages; builds are incremental (and use ccache).
+set -euo pipefail
+
+repo=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+build=${OTPARAM_BUILD_DIR:-$repo/build}
+asan_build=${OTPARAM_ASAN_BUILD_DIR:-$repo/build-asan}
+jobs=${OTPARAM_JOBS:-$(nproc)}
+python=/usr/bin/python3
+
+# ParaView 5.11 with its own VTK 9.2 (module, Python wrapping and plugin are all built against
+# it), the third-party headers its CMake package looks for with the components OTParam uses,
+# Qt's help tools for the plugin documentation, the algorithms' libraries, test tools.
+packages=(
+  cmake ninja-build g++ ccache
+  paraview paraview-dev python3-paraview python3-dev python3-numpy
+  qtbase5-dev qttools5-dev qttools5-dev-tools libqt5svg5-dev qtxmlpatterns5-dev-tools
+  libqt5x11extras5-dev
+  libopenmpi-dev libdouble-conversion-dev liblz4-dev liblzma-dev libexpat1-dev zlib1g-dev
+  libcgal-dev libgmp-dev libmpfr-dev libboost-dev libeigen3-dev libsuitesparse-dev
+  libgtest-dev xvfb xauth
+)
+
+log() { printf '\n==== %s\n' "$*"; }
+
+as_root() {
+  if [ "$(id -u)" -eq 0 ]; then "$@"; else sudo "$@"; fi
+}
+
+install_packages() {
+  log "installing packages"
+  export DEBIAN_FRONTEND=noninteractive
+  as_root apt-get update
+  as_root apt-get install -y --no-install-recommends "${packages[@]}"
+}
+
+configure_and_build() {
+  local generator=()
+  command -v ninja > /dev/null && generator=(-G Ninja)
+  log "configuring $build"
+  cmake -S "$repo" -B "$build" "${generator[@]}" \
+    -DCMAKE_BUILD_TYPE=Release \
+    -DPython3_EXECUTABLE="$python"
+  log "building $build"
+  cmake --build "$build" --parallel "$jobs"
+}
+
+setup() {
+  install_packages
+  configure_and_build
+}
+
+run_main() {
+  local output=${1:-$repo/otparam-output}
+  setup
+  log "main job: semi-discrete OT on the built-in example -> $output"
+  PYTHONPATH="$build/lib/python3/dist-packages${PYTHONPATH:+:$PYTHONPATH}" \
+    "$python" "$repo/Examples/ot_solver_demo.py" "$output"
+}
+
+run_tests() {
+  setup
+  log "ctest in $build"
+  (cd "$build" && ctest --output-on-failure --parallel "$jobs")
+
+  # The core alone, with AddressSanitizer and UndefinedBehaviorSanitizer: no VTK, so every
+  # report is the core's. -O1 keeps the n = 1e5 tests fast enough.
+  log "core-only sanitizer build in $asan_build"
+  local generator=()
+  command -v ninja > /dev/null && generator=(-G Ninja)
+  cmake -S "$repo" -B "$asan_build" "${generator[@]}" \
+    -DOTPARAM_CORE_ONLY=ON \
+    -DCMAKE_BUILD_TYPE=Debug \
+    -DCMAKE_CXX_FLAGS_DEBUG="-g -O1" \
+    -DCMAKE_CXX_FLAGS="-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined"
+  cmake --build "$asan_build" --parallel "$jobs"
+  log "ctest in $asan_build"
+  (cd "$asan_build" &&
+    ASAN_OPTIONS=detect_leaks=1:abort_on_error=0 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+      ctest --output-on-failure --parallel "$jobs")
+}
+
+case "${1:-}" in
+  main) shift; run_main "$@" ;;
+  test) run_tests ;;
+  setup) setup ;;
+  *) echo "usage: $0 main [output dir] | test | setup" >&2; exit 2 ;;
+esac

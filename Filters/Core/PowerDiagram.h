@@ -1,0 +1,53 @@
+// The power diagram of weighted Diracs, from CGAL's regular triangulation (exact predicates).
+// CGAL stays inside PowerDiagram.cxx; callers see adjacency and convex cells only.
+#ifndef OTPARAM_POWERDIAGRAM_H
+#define OTPARAM_POWERDIAGRAM_H
+
+#include "OTGeometry.h"
+#include "SourceMeasure.h"
+
+#include <vector>
+
+namespace otparam
+{
+
+// Heights carry more precision than the coordinates: a cell edge between Diracs at distance
+// delta moves by (error of h_i - h_j) / delta, so with doubles two Diracs 1e-4 apart would pin
+// their tiny cells' masses to ~1e-9 relative error, above the 1e-10 the solver must reach.
+using Height = long double;
+
+class PowerDiagram
+{
+public:
+  // Cells W_i = {x : <x, y_i> - h_i >= <x, y_j> - h_j for all j}: the power diagram of y_i with
+  // weights |y_i|^2 - 2 h_i.
+  void build(const std::vector<Vec2>& diracs, const std::vector<Height>& heights);
+
+  int size() const { return static_cast<int>(Sites.size()); }
+  // A hidden Dirac has an empty cell in the whole plane.
+  bool hidden(int i) const { return Hidden[i] != 0; }
+  int hiddenCount() const { return HiddenCount; }
+  // Neighbours of Dirac i in the regular triangulation (one per power edge in the plane).
+  const int* neighborsBegin(int i) const { return Adjacency.data() + Offsets[i]; }
+  const int* neighborsEnd(int i) const { return Adjacency.data() + Offsets[i + 1]; }
+  // Cell of Dirac i intersected with the box [lo, hi] (which must contain the domain). Thread-safe.
+  void cell(int i, Vec2 lo, Vec2 hi, PowerCell& out) const;
+  // Finite faces of the regular (weighted Delaunay) triangulation, counter-clockwise.
+  const std::vector<Triangle>& triangles() const { return Triangles; }
+
+private:
+  std::vector<Vec2> Sites;
+  std::vector<Height> Heights;
+  std::vector<int> Offsets, Adjacency;
+  std::vector<char> Hidden;
+  std::vector<Triangle> Triangles;
+  int HiddenCount = 0;
+};
+
+// Indices of the points in Hilbert-curve order (CGAL's spatial sort): consecutive entries are
+// close in the plane, which makes compact groups for coarse-to-fine solves.
+std::vector<int> hilbertOrder(const std::vector<Vec2>& points);
+
+} // namespace otparam
+
+#endif

@@ -1,0 +1,653 @@
+#include "SemiDiscreteOT.h"
+
+#include "PowerDiagram.h"
+
+#include <Eigen/Sparse>
+#include <Eigen/SparseCholesky>
+#ifdef OTPARAM_HAVE_CHOLMOD
+#include <Eigen/CholmodSupport>
+#endif
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numeric>
+#include <sstream>
+#include <unordered_map>
+
+namespace otparam
+{
+namespace
+{
+using Clock = std::chrono::steady_clock;
+constexpr double Pi = 3.14159265358979323846;
+
+double secondsSince(Clock::time_point t0)
+{
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+struct Evaluation
+{
+  std::vector<double> cellMass;
+  std::vector<Vec2> moment;
+  // Hessian coefficients mu(W_i ∩ W_j) / |y_i - y_j| for neighbouring cells, i < j.
+  std::vector<Eigen::Triplet<double>> coupling;
+  double minMass = 0.0;
+  int emptyCells = 0;
+};
+
+// The source box, a little larger so that its edges never touch the domain.
+void sourceBox(const SourceMeasure& source, Vec2& lo, Vec2& hi)
+{
+  source.bounds(lo, hi);
+  const double margin = 0.01 * std::max(hi.x - lo.x, hi.y - lo.y) + 1e-12;
+  lo = lo - Vec2{ margin, margin };
+  hi = hi + Vec2{ margin, margin };
+}
+
+void evaluate(const SourceMeasure& source, const std::vector<Vec2>& diracs,
+  const std::vector<Height>& heights, PowerDiagram& diagram, Evaluation& ev, OTResult& timing)
+{
+  const int n = static_cast<int>(diracs.size());
+  auto t0 = Clock::now();
+  diagram.build(diracs, heights);
+  timing.secondsTriangulation += secondsSince(t0);
+  if (diagram.hiddenCount() > 0)
+  {
+    // A hidden Dirac has an empty cell: the step is rejected without integrating.
+    ev.cellMass.assign(n, 0.0);
+    ev.moment.assign(n, Vec2{});
+    ev.coupling.clear();
+    ev.minMass = 0.0;
+    ev.emptyCells = diagram.hiddenCount();
+    return;
+  }
+
+  t0 = Clock::now();
+  Vec2 lo, hi;
+  sourceBox(source, lo, hi);
+  ev.cellMass.assign(n, 0.0);
+  ev.moment.assign(n, Vec2{});
+  ev.coupling.clear();
+#pragma omp parallel
+  {
+    PowerCell cell;
+    CellIntegrals integrals;
+    std::vector<Eigen::Triplet<double>> local;
+#pragma omp for schedule(dynamic, 512) nowait
+    for (int i = 0; i < n; ++i)
+    {
+      diagram.cell(i, lo, hi, cell);
+      if (cell.vertices.empty())
+      {
+        continue;
+      }
+      source.integrate(cell, integrals);
+      ev.cellMass[i] = integrals.mass;
+      ev.moment[i] = integrals.moment;
+      for (const auto& em : integrals.edgeMass)
+      {
+        const int j = em.first;
+        if (j > i && em.second > 0.0)
+        {
+          local.emplace_back(i, j, em.second / norm(diracs[i] - diracs[j]));
+        }
+      }
+    }
+#pragma omp critical
+    ev.coupling.insert(ev.coupling.end(), local.begin(), local.end());
+  }
+  ev.minMass = n ? *std::min_element(ev.cellMass.begin(), ev.cellMass.end()) : 0.0;
+  ev.emptyCells = static_cast<int>(std::count(ev.cellMass.begin(), ev.cellMass.end(), 0.0));
+  timing.secondsIntegration += secondsSince(t0);
+}
+
+double relativeError(const std::vector<double>& cellMass, const std::vector<double>& mass)
+{
+  double err = 0.0;
+  for (size_t i = 0; i < mass.size(); ++i)
+  {
+    err = std::max(err, std::abs(cellMass[i] - mass[i]) / mass[i]);
+  }
+  return err;
+}
+
+double gradientNorm(const std::vector<double>& cellMass, const std::vector<double>& mass)
+{
+  double s = 0.0;
+  for (size_t i = 0; i < mass.size(); ++i)
+  {
+    const double g = cellMass[i] - mass[i];
+    s += g * g;
+  }
+  return std::sqrt(s);
+}
+
+// Sparse SPD solve of the graph Laplacian L d = g with one height pinned (the gauge). The
+// pinned cell absorbs the rounding of sum(cellMass) = total, so it must be the largest one.
+class NewtonSystem
+{
+public:
+  explicit NewtonSystem(int pinned)
+    : Pinned(pinned)
+  {
+  }
+
+  // Returns false when the factorization fails.
+  bool solve(int n, const std::vector<Eigen::Triplet<double>>& coupling,
+    const std::vector<double>& g, std::vector<double>& d, OTResult& timing)
+  {
+    auto t0 = Clock::now();
+    const int m = n - 1;
+    auto row = [this](int i) { return i < Pinned ? i : i - 1; };
+    std::vector<Eigen::Triplet<double>> entries;
+    entries.reserve(coupling.size() + n);
+    std::vector<double> diagonal(n, 0.0);
+    for (const auto& c : coupling)
+    {
+      diagonal[c.row()] += c.value();
+      diagonal[c.col()] += c.value();
+      if (c.row() != Pinned && c.col() != Pinned)
+      {
+        // Lower triangle only: both factorizations read one triangle.
+        const int a = row(c.row()), b = row(c.col());
+        entries.emplace_back(std::max(a, b), std::min(a, b), -c.value());
+      }
+    }
+    Eigen::VectorXd rhs(m);
+    for (int i = 0; i < n; ++i)
+    {
+      if (i != Pinned)
+      {
+        entries.emplace_back(row(i), row(i), diagonal[i]);
+        rhs[row(i)] = g[i];
+      }
+    }
+    Eigen::SparseMatrix<double> L(m, m);
+    L.setFromTriplets(entries.begin(), entries.end());
+    timing.secondsAssembly += secondsSince(t0);
+
+    t0 = Clock::now();
+    Eigen::VectorXd x;
+    bool ok = false;
+#ifdef OTPARAM_HAVE_CHOLMOD
+    if (m >= CholmodThreshold)
+    {
+      Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> chol;
+      chol.compute(L);
+      ok = chol.info() == Eigen::Success;
+      if (ok)
+      {
+        x = chol.solve(rhs);
+        x += chol.solve(rhs - L.selfadjointView<Eigen::Lower>() * x); // one refinement step
+      }
+    }
+    else
+#endif
+    {
+      Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower> ldlt;
+      ldlt.compute(L);
+      ok = ldlt.info() == Eigen::Success;
+      if (ok)
+      {
+        x = ldlt.solve(rhs);
+        x += ldlt.solve(rhs - L.selfadjointView<Eigen::Lower>() * x);
+      }
+    }
+    timing.secondsSolve += secondsSince(t0);
+    if (!ok || !x.allFinite())
+    {
+      return false;
+    }
+    d.assign(n, 0.0);
+    for (int i = 0; i < n; ++i)
+    {
+      if (i != Pinned)
+      {
+        d[i] = x[row(i)];
+      }
+    }
+    return true;
+  }
+
+  static constexpr int CholmodThreshold = 200000;
+
+private:
+  int Pinned;
+};
+
+} // namespace
+
+std::string validateDiracs(const std::vector<Vec2>& diracs, const std::vector<double>& masses)
+{
+  std::ostringstream msg;
+  if (diracs.empty())
+  {
+    return "there are no Diracs (the target has no points)";
+  }
+  if (masses.size() != diracs.size())
+  {
+    msg << "there are " << diracs.size() << " Diracs but " << masses.size() << " masses";
+    return msg.str();
+  }
+  auto listIds = [&](const char* what, const std::vector<size_t>& ids) {
+    msg << ids.size() << " Dirac(s) " << what << " (point ids";
+    for (size_t k = 0; k < std::min<size_t>(ids.size(), 10); ++k)
+    {
+      msg << ' ' << ids[k];
+    }
+    msg << (ids.size() > 10 ? " ...)" : ")");
+  };
+  std::vector<size_t> bad;
+  for (size_t i = 0; i < diracs.size(); ++i)
+  {
+    if (!std::isfinite(diracs[i].x) || !std::isfinite(diracs[i].y))
+    {
+      bad.push_back(i);
+    }
+  }
+  if (!bad.empty())
+  {
+    listIds("have NaN or infinite coordinates", bad);
+    return msg.str();
+  }
+  for (size_t i = 0; i < masses.size(); ++i)
+  {
+    if (!(std::isfinite(masses[i]) && masses[i] > 0.0))
+    {
+      bad.push_back(i);
+    }
+  }
+  if (!bad.empty())
+  {
+    listIds("have a Mass that is not finite and positive", bad);
+    return msg.str();
+  }
+  std::vector<size_t> order(diracs.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+    return diracs[a].x < diracs[b].x || (diracs[a].x == diracs[b].x && diracs[a].y < diracs[b].y);
+  });
+  for (size_t k = 1; k < order.size(); ++k)
+  {
+    const Vec2 a = diracs[order[k - 1]], b = diracs[order[k]];
+    if (a.x == b.x && a.y == b.y)
+    {
+      bad.push_back(std::min(order[k - 1], order[k]));
+      bad.push_back(std::max(order[k - 1], order[k]));
+    }
+  }
+  if (!bad.empty())
+  {
+    listIds("share their position with another Dirac", bad);
+    return msg.str();
+  }
+  return std::string();
+}
+
+namespace
+{
+// Voronoi start; when a cell misses the domain (Diracs outside it), the Voronoi diagram of the
+// Diracs mapped into the domain by a similarity z = s y + t instead: its cells are the power
+// cells of y with h_i = |z_i|^2 / (2 s).
+void voronoiStart(const SourceMeasure& source, const std::vector<Vec2>& diracs,
+  std::vector<Height>& h, PowerDiagram& diagram, Evaluation& ev, OTResult& result)
+{
+  const size_t n = diracs.size();
+  h.resize(n);
+  for (size_t i = 0; i < n; ++i)
+  {
+    h[i] = 0.5L * dot(diracs[i], diracs[i]);
+  }
+  evaluate(source, diracs, h, diagram, ev, result);
+  if (ev.minMass > 0.0)
+  {
+    return;
+  }
+  Vec2 lo = diracs[0], hi = diracs[0];
+  for (const Vec2& y : diracs)
+  {
+    lo = { std::min(lo.x, y.x), std::min(lo.y, y.y) };
+    hi = { std::max(hi.x, y.x), std::max(hi.y, y.y) };
+  }
+  const Vec2 mid = 0.5 * (lo + hi);
+  const double radius = std::max(0.5 * norm(hi - lo), 1e-300);
+  Vec2 center;
+  double inner;
+  source.innerDisk(center, inner);
+  const double s = 0.9 * inner / radius;
+  for (size_t i = 0; i < n; ++i)
+  {
+    const Vec2 z = center + s * (diracs[i] - mid);
+    h[i] = static_cast<Height>(dot(z, z)) / (2.0L * s);
+  }
+  evaluate(source, diracs, h, diagram, ev, result);
+}
+
+constexpr size_t CoarsestLevel = 3000;
+constexpr int GroupSize = 4;
+constexpr double CoarseTolerance = 1e-6;
+
+// Damped Newton from heights h whose cells are all non-empty (ev evaluated at h).
+// Records histories and stops as documented in OTResult.
+void dampedNewton(const SourceMeasure& source, const std::vector<Vec2>& diracs,
+  const std::vector<double>& nu, std::vector<Height>& h, PowerDiagram& diagram, Evaluation& ev,
+  double tolerance, int maxIterations, const std::function<bool(int, double)>& progress,
+  OTResult& result)
+{
+  const int n = static_cast<int>(diracs.size());
+  // KMT: every accepted step keeps each cell's mass above eps0.
+  const double eps0 = 0.5 * std::min(ev.minMass, *std::min_element(nu.begin(), nu.end()));
+  NewtonSystem system(static_cast<int>(std::max_element(nu.begin(), nu.end()) - nu.begin()));
+  std::vector<double> g(n), d;
+  std::vector<Height> trial(n);
+  Evaluation trialEv;
+  PowerDiagram trialDiagram;
+  for (int it = 0;; ++it)
+  {
+    result.iterations = it;
+    result.relativeError = relativeError(ev.cellMass, nu);
+    if (progress && !progress(it, result.relativeError))
+    {
+      result.aborted = true;
+      result.message = "aborted";
+      return;
+    }
+    if (result.relativeError <= tolerance)
+    {
+      result.converged = true;
+      std::ostringstream msg;
+      msg << "converged in " << it << " Newton iterations, relative error " << result.relativeError;
+      result.message = msg.str();
+      return;
+    }
+    if (n == 1)
+    {
+      result.message = "a single Dirac: its cell is the whole domain";
+      return;
+    }
+    if (it >= maxIterations)
+    {
+      std::ostringstream msg;
+      msg << "not converged after " << it << " Newton iterations: relative error "
+          << result.relativeError << " > tolerance " << tolerance;
+      result.message = msg.str();
+      return;
+    }
+    for (int i = 0; i < n; ++i)
+    {
+      g[i] = ev.cellMass[i] - nu[i];
+    }
+    const double gnorm = gradientNorm(ev.cellMass, nu);
+    if (!system.solve(n, ev.coupling, g, d, result))
+    {
+      result.message = "the Newton system could not be factorized (disconnected cells?)";
+      return;
+    }
+    double lambda = 1.0;
+    bool accepted = false;
+    for (int halving = 0; halving < 40; ++halving, lambda *= 0.5)
+    {
+      for (int i = 0; i < n; ++i)
+      {
+        trial[i] = h[i] + lambda * d[i];
+      }
+      evaluate(source, diracs, trial, trialDiagram, trialEv, result);
+      if (trialEv.minMass < eps0)
+      {
+        continue;
+      }
+      // KMT's rule guarantees global convergence. Near the solution |g|_2 sits at the rounding
+      // level of the largest cells while small cells still have relative errors to remove: a
+      // full step that halves the largest relative error is then accepted as well.
+      if (gradientNorm(trialEv.cellMass, nu) <= (1.0 - 0.5 * lambda) * gnorm ||
+        (lambda == 1.0 && relativeError(trialEv.cellMass, nu) < 0.5 * result.relativeError))
+      {
+        accepted = true;
+        break;
+      }
+    }
+    if (!accepted)
+    {
+      std::ostringstream msg;
+      msg << "Newton step rejected at every damping down to " << lambda << " after " << it
+          << " iterations (relative error " << result.relativeError
+          << "; the tolerance may be below what double precision allows here)";
+      result.message = msg.str();
+      return;
+    }
+    result.gradientNormHistory.push_back(gnorm);
+    result.stepLengthHistory.push_back(lambda);
+    h.swap(trial);
+    std::swap(ev, trialEv);
+    std::swap(diagram, trialDiagram);
+  }
+}
+
+// Coarse-to-fine start (after Mérigot's multiscale method): merge groups of Diracs that are
+// consecutive along a Hilbert curve, solve the coarse problem, and give each fine Dirac the
+// heights that split its group's coarse cell like the Voronoi diagram of the group, scaled to
+// the cell: h_i = H_j + <x_j, y_i - Y_j> + s_j |y_i - Y_j|^2 / 2 (x_j the coarse cell's centroid).
+bool coarseToFineStart(const SourceMeasure& source, const std::vector<Vec2>& diracs,
+  const std::vector<double>& nu, std::vector<Height>& h, OTResult& result)
+{
+  const size_t n = diracs.size();
+  const std::vector<int> order = hilbertOrder(diracs);
+  const size_t groups = (n + GroupSize - 1) / GroupSize;
+  std::vector<int> parent(n);
+  std::vector<Vec2> coarse(groups);
+  std::vector<double> coarseMass(groups, 0.0);
+  for (size_t k = 0; k < n; ++k)
+  {
+    const int i = order[k];
+    const size_t j = k / GroupSize;
+    parent[i] = static_cast<int>(j);
+    coarseMass[j] += nu[i];
+    coarse[j] = coarse[j] + nu[i] * diracs[i];
+  }
+  for (size_t j = 0; j < groups; ++j)
+  {
+    coarse[j] = (1.0 / coarseMass[j]) * coarse[j];
+  }
+  if (!validateDiracs(coarse, coarseMass).empty())
+  {
+    return false;
+  }
+  std::vector<double> spread(groups, 0.0);
+  for (size_t i = 0; i < n; ++i)
+  {
+    const Vec2 e = diracs[i] - coarse[parent[i]];
+    spread[parent[i]] += nu[i] * dot(e, e);
+  }
+
+  std::vector<Height> H;
+  PowerDiagram diagram;
+  Evaluation ev;
+  OTResult coarseResult;
+  if (groups > CoarsestLevel)
+  {
+    if (!coarseToFineStart(source, coarse, coarseMass, H, coarseResult))
+    {
+      return false;
+    }
+    evaluate(source, coarse, H, diagram, ev, coarseResult);
+    if (ev.minMass <= 0.0)
+    {
+      voronoiStart(source, coarse, H, diagram, ev, coarseResult);
+    }
+  }
+  else
+  {
+    voronoiStart(source, coarse, H, diagram, ev, coarseResult);
+  }
+  if (ev.minMass <= 0.0)
+  {
+    return false;
+  }
+  coarseResult.iterations = 0;
+  dampedNewton(source, coarse, coarseMass, H, diagram, ev, CoarseTolerance, 100, {}, coarseResult);
+  result.coarseIterations += coarseResult.iterations + coarseResult.coarseIterations;
+  result.secondsTriangulation += coarseResult.secondsTriangulation;
+  result.secondsIntegration += coarseResult.secondsIntegration;
+  result.secondsAssembly += coarseResult.secondsAssembly;
+  result.secondsSolve += coarseResult.secondsSolve;
+
+  h.resize(n);
+  for (size_t i = 0; i < n; ++i)
+  {
+    const size_t j = parent[i];
+    const Vec2 centroid = ev.cellMass[j] > 0.0 ? (1.0 / ev.cellMass[j]) * ev.moment[j] : coarse[j];
+    const Vec2 e = diracs[i] - coarse[j];
+    const double sigma2 = spread[j] / coarseMass[j];
+    const double scale = sigma2 > 0.0 ? std::sqrt(ev.cellMass[j] / (2.0 * Pi * sigma2)) : 0.0;
+    h[i] = H[j] + static_cast<Height>(dot(centroid, e)) + static_cast<Height>(0.5 * scale * dot(e, e));
+  }
+  return true;
+}
+} // namespace
+
+OTResult solveSemiDiscreteOT(const SourceMeasure& source, const std::vector<Vec2>& diracs,
+  const std::vector<double>& masses, const OTOptions& options)
+{
+  OTResult result;
+  const std::string invalid = validateDiracs(diracs, masses);
+  if (!invalid.empty())
+  {
+    result.message = invalid;
+    return result;
+  }
+  const int n = static_cast<int>(diracs.size());
+  const double sum = std::accumulate(masses.begin(), masses.end(), 0.0);
+  result.mass.resize(n);
+  for (int i = 0; i < n; ++i)
+  {
+    result.mass[i] = masses[i] * (source.totalMass() / sum);
+  }
+  const std::vector<double>& nu = result.mass;
+
+  std::vector<Height> h;
+  PowerDiagram diagram;
+  Evaluation ev;
+  bool started = false;
+  if (options.coarseToFine && static_cast<size_t>(n) > CoarsestLevel &&
+    coarseToFineStart(source, diracs, nu, h, result))
+  {
+    evaluate(source, diracs, h, diagram, ev, result);
+    started = ev.minMass > 0.0;
+  }
+  if (!started)
+  {
+    voronoiStart(source, diracs, h, diagram, ev, result);
+  }
+  if (ev.minMass <= 0.0)
+  {
+    std::ostringstream msg;
+    msg << ev.emptyCells
+        << " cell(s) stay empty at the start (Diracs too close for double precision?)";
+    result.message = msg.str();
+    result.relativeError = relativeError(ev.cellMass, nu);
+  }
+  else
+  {
+    dampedNewton(source, diracs, nu, h, diagram, ev, options.tolerance, options.maxIterations,
+      options.progress, result);
+  }
+
+  result.heights.assign(h.begin(), h.end());
+  result.cellMass = ev.cellMass;
+  result.centroids.resize(n);
+  for (int i = 0; i < n; ++i)
+  {
+    const double w = ev.cellMass[i];
+    result.centroids[i] = w > 0.0 ? (1.0 / w) * ev.moment[i] : diracs[i];
+  }
+  return result;
+}
+
+CellMeasures computeCellMeasures(
+  const SourceMeasure& source, const std::vector<Vec2>& diracs, const std::vector<double>& heights)
+{
+  OTResult unusedTiming;
+  PowerDiagram diagram;
+  Evaluation ev;
+  evaluate(source, diracs, std::vector<Height>(heights.begin(), heights.end()), diagram, ev,
+    unusedTiming);
+  CellMeasures measures;
+  measures.mass = ev.cellMass;
+  measures.centroid.resize(diracs.size());
+  for (size_t i = 0; i < diracs.size(); ++i)
+  {
+    const double w = ev.cellMass[i];
+    measures.centroid[i] = w > 0.0 ? (1.0 / w) * ev.moment[i] : diracs[i];
+  }
+  return measures;
+}
+
+PowerDiagramGeometry computePowerDiagramGeometry(const SourceMeasure& source,
+  const std::vector<Vec2>& diracs, const std::vector<double>& heights, double maxArcAngle)
+{
+  PowerDiagramGeometry geometry;
+  PowerDiagram diagram;
+  diagram.build(diracs, std::vector<Height>(heights.begin(), heights.end()));
+  geometry.triangles = diagram.triangles();
+  Vec2 lo, hi;
+  sourceBox(source, lo, hi);
+  PowerCell cell;
+  for (int i = 0; i < diagram.size(); ++i)
+  {
+    diagram.cell(i, lo, hi, cell);
+    if (cell.vertices.empty())
+    {
+      continue;
+    }
+    std::vector<Vec2> boundary = source.clippedBoundary(cell, maxArcAngle);
+    if (boundary.size() < 3)
+    {
+      continue;
+    }
+    // Shared edges inside the domain: clip each labelled edge to the clipped cell.
+    const size_t m = cell.vertices.size();
+    for (size_t k = 0; k < m; ++k)
+    {
+      const int j = cell.neighbor[k];
+      if (j <= i)
+      {
+        continue;
+      }
+      PowerCell edgeCell;
+      edgeCell.vertices = { cell.vertices[k], cell.vertices[(k + 1) % m] };
+      // Clip the segment by the clipped boundary polygon (convex up to arc sampling).
+      Vec2 a = edgeCell.vertices[0], b = edgeCell.vertices[1];
+      double t0 = 0.0, t1 = 1.0;
+      const size_t bn = boundary.size();
+      for (size_t e = 0; e < bn && t0 < t1; ++e)
+      {
+        const Vec2 p = boundary[e], q = boundary[(e + 1) % bn];
+        const double sa = cross(q - p, a - p), sb = cross(q - p, b - p);
+        const double tol = 1e-12 * norm(q - p);
+        if (sa < -tol && sb < -tol)
+        {
+          t1 = -1.0;
+        }
+        else if (sa < -tol)
+        {
+          t0 = std::max(t0, sa / (sa - sb));
+        }
+        else if (sb < -tol)
+        {
+          t1 = std::min(t1, sa / (sa - sb));
+        }
+      }
+      if (t0 < t1)
+      {
+        geometry.edges.push_back({ a + t0 * (b - a), a + t1 * (b - a), i, j });
+      }
+    }
+    geometry.cells.push_back(std::move(boundary));
+    geometry.cellDirac.push_back(i);
+  }
+  return geometry;
+}
+
+} // namespace otparam

@@ -1,0 +1,710 @@
+#include "SourceMeasure.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <unordered_map>
+
+namespace otparam
+{
+namespace
+{
+constexpr double Pi = 3.14159265358979323846;
+
+// ---------------------------------------------------------------------------------------------
+// Unit disk, density 1.
+
+struct ChordPiece
+{
+  Vec2 a, b;       // the part of a cell edge inside the disk
+  int neighbor;
+  bool enters;     // a is on the circle (the boundary comes in from an arc)
+  bool exits;      // b is on the circle
+};
+
+// Part of segment p->q inside the unit disk, as parameters [t0, t1] within [0, 1].
+bool segmentInsideUnitDisk(Vec2 p, Vec2 q, double& t0, double& t1)
+{
+  const Vec2 d = q - p;
+  const double a = dot(d, d);
+  if (a == 0.0)
+  {
+    return false;
+  }
+  // |p + t d|^2 = 1  <=>  a t^2 + 2 b t + c = 0
+  const double b = dot(p, d);
+  const double c = dot(p, p) - 1.0;
+  const double disc = b * b - a * c;
+  if (disc <= 0.0)
+  {
+    return false;
+  }
+  const double s = std::sqrt(disc);
+  // Numerically stable roots.
+  const double qq = -(b + std::copysign(s, b));
+  double r0 = qq / a;
+  double r1 = (qq != 0.0) ? c / qq : -r0;
+  if (r0 > r1)
+  {
+    std::swap(r0, r1);
+  }
+  t0 = std::max(r0, 0.0);
+  t1 = std::min(r1, 1.0);
+  return t0 < t1;
+}
+
+// theta - sin(theta), accurate for small angles (circular segments of tiny cells).
+double thetaMinusSin(double theta)
+{
+  if (theta < 1e-2)
+  {
+    const double t2 = theta * theta;
+    return theta * t2 / 6.0 * (1.0 - t2 / 20.0 * (1.0 - t2 / 42.0));
+  }
+  return theta - std::sin(theta);
+}
+
+Vec2 onCircle(Vec2 p)
+{
+  const double r = norm(p);
+  return { p.x / r, p.y / r };
+}
+
+bool insideConvex(const PowerCell& cell, Vec2 p)
+{
+  const size_t n = cell.vertices.size();
+  for (size_t k = 0; k < n; ++k)
+  {
+    const Vec2 a = cell.vertices[k];
+    const Vec2 b = cell.vertices[(k + 1) % n];
+    if (cross(b - a, p - a) < 0.0)
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+// Counter-clockwise angle from direction e to direction s on the unit circle, in [0, 2 pi).
+// An arc of the clipped cell lies inside the cell; a tiny negative angle from rounding (exit and
+// entry at the same vertex on the circle) must not turn into a full turn.
+double arcAngle(Vec2 e, Vec2 s, const PowerCell& cell)
+{
+  double theta = std::atan2(cross(e, s), dot(e, s));
+  if (theta < 0.0)
+  {
+    theta += 2.0 * Pi;
+  }
+  if (theta > Pi)
+  {
+    const double mid = std::atan2(e.y, e.x) + 0.5 * theta;
+    if (!insideConvex(cell, { std::cos(mid), std::sin(mid) }))
+    {
+      return 0.0;
+    }
+  }
+  return theta;
+}
+
+class UnitDiskSource final : public SourceMeasure
+{
+public:
+  double totalMass() const override { return Pi; }
+  void bounds(Vec2& lo, Vec2& hi) const override
+  {
+    lo = { -1.0, -1.0 };
+    hi = { 1.0, 1.0 };
+  }
+  void innerDisk(Vec2& center, double& radius) const override
+  {
+    center = { 0.0, 0.0 };
+    radius = 1.0;
+  }
+
+  // Cell ∩ disk = polygon through the chord pieces + one circular segment per arc.
+  void integrate(const PowerCell& cell, CellIntegrals& out) const override
+  {
+    out.mass = 0.0;
+    out.moment = { 0.0, 0.0 };
+    out.edgeMass.clear();
+    std::vector<ChordPiece> pieces;
+    chordPieces(cell, pieces);
+    if (pieces.empty())
+    {
+      if (!cell.vertices.empty() && insideConvex(cell, { 0.0, 0.0 }))
+      {
+        out.mass = Pi; // the cell contains the whole disk
+      }
+      return;
+    }
+    for (const ChordPiece& p : pieces)
+    {
+      if (p.neighbor >= 0)
+      {
+        out.edgeMass.emplace_back(p.neighbor, norm(p.b - p.a));
+      }
+    }
+    // Polygon part, in coordinates local to its first point (tiny cells far from the origin).
+    const Vec2 o = pieces.front().a;
+    double area2 = 0.0;
+    Vec2 moment6 = { 0.0, 0.0 };
+    auto addTriangleEdge = [&](Vec2 p, Vec2 q) {
+      const Vec2 lp = p - o, lq = q - o;
+      const double c = cross(lp, lq);
+      area2 += c;
+      moment6 = moment6 + c * (lp + lq);
+    };
+    const size_t m = pieces.size();
+    for (size_t k = 0; k < m; ++k)
+    {
+      const ChordPiece& p = pieces[k];
+      const ChordPiece& next = pieces[(k + 1) % m];
+      addTriangleEdge(p.a, p.b);
+      addTriangleEdge(p.b, next.a);
+    }
+    double area = 0.5 * area2;
+    Vec2 moment = (1.0 / 6.0) * moment6 + area * o;
+    // Circular segments between an exit point and the next entry point.
+    for (size_t k = 0; k < m; ++k)
+    {
+      const ChordPiece& p = pieces[k];
+      const ChordPiece& next = pieces[(k + 1) % m];
+      if (!p.exits || !next.enters)
+      {
+        continue;
+      }
+      const double theta = arcAngle(p.b, next.a, cell);
+      if (theta <= 0.0)
+      {
+        continue;
+      }
+      const double segArea = 0.5 * thetaMinusSin(theta);
+      const double mid = std::atan2(p.b.y, p.b.x) + 0.5 * theta;
+      const double s = std::sin(0.5 * theta);
+      const double segMoment = (2.0 / 3.0) * s * s * s;
+      area += segArea;
+      moment = moment + segMoment * Vec2{ std::cos(mid), std::sin(mid) };
+    }
+    out.mass = area;
+    out.moment = moment;
+  }
+
+  std::vector<Vec2> clippedBoundary(const PowerCell& cell, double maxArcAngle) const override
+  {
+    std::vector<Vec2> boundary;
+    std::vector<ChordPiece> pieces;
+    chordPieces(cell, pieces);
+    if (pieces.empty())
+    {
+      if (!cell.vertices.empty() && insideConvex(cell, { 0.0, 0.0 }))
+      {
+        appendArc(boundary, { 1.0, 0.0 }, 2.0 * Pi, maxArcAngle, false);
+      }
+      return boundary;
+    }
+    const size_t m = pieces.size();
+    for (size_t k = 0; k < m; ++k)
+    {
+      const ChordPiece& p = pieces[k];
+      const ChordPiece& next = pieces[(k + 1) % m];
+      boundary.push_back(p.a);
+      boundary.push_back(p.b);
+      if (p.exits && next.enters)
+      {
+        appendArc(boundary, p.b, arcAngle(p.b, next.a, cell), maxArcAngle, true);
+      }
+    }
+    // Drop consecutive duplicates (a piece ends where the next starts).
+    std::vector<Vec2> unique;
+    for (const Vec2& q : boundary)
+    {
+      if (unique.empty() || norm(q - unique.back()) > 1e-15)
+      {
+        unique.push_back(q);
+      }
+    }
+    while (unique.size() > 1 && norm(unique.front() - unique.back()) <= 1e-15)
+    {
+      unique.pop_back();
+    }
+    return unique;
+  }
+
+private:
+  static void appendArc(
+    std::vector<Vec2>& out, Vec2 from, double theta, double maxArcAngle, bool skipEnds)
+  {
+    const int steps = std::max(1, static_cast<int>(std::ceil(theta / maxArcAngle)));
+    const double start = std::atan2(from.y, from.x);
+    const int first = skipEnds ? 1 : 0;
+    const int last = skipEnds ? steps - 1 : steps - 1;
+    for (int s = first; s <= last; ++s)
+    {
+      const double a = start + theta * s / steps;
+      out.push_back({ std::cos(a), std::sin(a) });
+    }
+  }
+
+  static void chordPieces(const PowerCell& cell, std::vector<ChordPiece>& pieces)
+  {
+    const size_t n = cell.vertices.size();
+    for (size_t k = 0; k < n; ++k)
+    {
+      const Vec2 p = cell.vertices[k];
+      const Vec2 q = cell.vertices[(k + 1) % n];
+      double t0, t1;
+      if (!segmentInsideUnitDisk(p, q, t0, t1))
+      {
+        continue;
+      }
+      ChordPiece piece;
+      piece.neighbor = cell.neighbor[k];
+      piece.enters = t0 > 0.0;
+      piece.exits = t1 < 1.0;
+      piece.a = piece.enters ? onCircle(p + t0 * (q - p)) : p;
+      piece.b = piece.exits ? onCircle(p + t1 * (q - p)) : q;
+      pieces.push_back(piece);
+    }
+  }
+};
+
+// ---------------------------------------------------------------------------------------------
+// Convex triangulated domain with a piecewise-linear density.
+
+// Keeps the part of a convex polygon where cross(b - a, x - a) >= 0 (left of a->b).
+void clipLeftOf(const std::vector<Vec2>& in, Vec2 a, Vec2 b, std::vector<Vec2>& out)
+{
+  out.clear();
+  const size_t n = in.size();
+  const Vec2 d = b - a;
+  for (size_t k = 0; k < n; ++k)
+  {
+    const Vec2 p = in[k];
+    const Vec2 q = in[(k + 1) % n];
+    const double sp = cross(d, p - a);
+    const double sq = cross(d, q - a);
+    if (sp >= 0.0)
+    {
+      out.push_back(p);
+    }
+    if ((sp >= 0.0) != (sq >= 0.0))
+    {
+      const double t = sp / (sp - sq);
+      out.push_back(p + t * (q - p));
+    }
+  }
+}
+
+// Integrals of 1, x, y, x^2, xy, y^2 over a polygon, in coordinates relative to o.
+struct Moments
+{
+  double m0 = 0, mx = 0, my = 0, mxx = 0, mxy = 0, myy = 0;
+};
+
+Moments polygonMoments(const std::vector<Vec2>& poly, Vec2 o)
+{
+  Moments m;
+  const size_t n = poly.size();
+  for (size_t k = 0; k < n; ++k)
+  {
+    const Vec2 p = poly[k] - o;
+    const Vec2 q = poly[(k + 1) % n] - o;
+    const double c = cross(p, q);
+    m.m0 += c;
+    m.mx += c * (p.x + q.x);
+    m.my += c * (p.y + q.y);
+    m.mxx += c * (p.x * p.x + p.x * q.x + q.x * q.x);
+    m.myy += c * (p.y * p.y + p.y * q.y + q.y * q.y);
+    m.mxy += c * (2 * p.x * p.y + p.x * q.y + q.x * p.y + 2 * q.x * q.y);
+  }
+  m.m0 /= 2;
+  m.mx /= 6;
+  m.my /= 6;
+  m.mxx /= 12;
+  m.myy /= 12;
+  m.mxy /= 24;
+  return m;
+}
+
+class TriangulatedSource final : public SourceMeasure
+{
+public:
+  std::vector<Vec2> points;
+  std::vector<Triangle> triangles;
+  std::vector<double> density;  // per point
+  std::vector<Vec2> hull;       // domain boundary, CCW
+  // Linear density per triangle: f(x) = c0 + cx * x + cy * y.
+  struct Linear
+  {
+    double c0, cx, cy;
+  };
+  std::vector<Linear> linear;
+  double total = 0.0;
+  Vec2 lo, hi;
+  // Uniform grid of triangle buckets for overlap queries.
+  int gridNx = 1, gridNy = 1;
+  double cellW = 1, cellH = 1;
+  std::vector<std::vector<int>> buckets;
+  Vec2 innerCenter;
+  double innerRadius = 0.0;
+
+  double totalMass() const override { return total; }
+  void bounds(Vec2& l, Vec2& h) const override
+  {
+    l = lo;
+    h = hi;
+  }
+  void innerDisk(Vec2& center, double& radius) const override
+  {
+    center = innerCenter;
+    radius = innerRadius;
+  }
+
+  double densityAt(int t, Vec2 p) const
+  {
+    const Linear& f = linear[t];
+    return f.c0 + f.cx * p.x + f.cy * p.y;
+  }
+
+  template <typename F>
+  void forCandidateTriangles(Vec2 a, Vec2 b, F&& visit, std::vector<int>& seen, int stamp) const
+  {
+    const int i0 = std::clamp(static_cast<int>((a.x - lo.x) / cellW), 0, gridNx - 1);
+    const int i1 = std::clamp(static_cast<int>((b.x - lo.x) / cellW), 0, gridNx - 1);
+    const int j0 = std::clamp(static_cast<int>((a.y - lo.y) / cellH), 0, gridNy - 1);
+    const int j1 = std::clamp(static_cast<int>((b.y - lo.y) / cellH), 0, gridNy - 1);
+    for (int j = j0; j <= j1; ++j)
+    {
+      for (int i = i0; i <= i1; ++i)
+      {
+        for (int t : buckets[j * gridNx + i])
+        {
+          if (seen[t] != stamp)
+          {
+            seen[t] = stamp;
+            visit(t);
+          }
+        }
+      }
+    }
+  }
+
+  void integrate(const PowerCell& cell, CellIntegrals& out) const override
+  {
+    out.mass = 0.0;
+    out.moment = { 0.0, 0.0 };
+    out.edgeMass.clear();
+    if (cell.vertices.size() < 3)
+    {
+      return;
+    }
+    Vec2 cl = cell.vertices[0], ch = cell.vertices[0];
+    for (const Vec2& p : cell.vertices)
+    {
+      cl = { std::min(cl.x, p.x), std::min(cl.y, p.y) };
+      ch = { std::max(ch.x, p.x), std::max(ch.y, p.y) };
+    }
+    thread_local std::vector<int> seen;
+    thread_local int stamp = 0;
+    if (seen.size() != triangles.size())
+    {
+      seen.assign(triangles.size(), -1);
+      stamp = 0;
+    }
+    ++stamp;
+    thread_local std::vector<Vec2> piece, scratch;
+    std::vector<double> edgeIntegral(cell.vertices.size(), 0.0);
+    const Vec2 o = cell.vertices[0];
+    const size_t n = cell.vertices.size();
+    forCandidateTriangles(cl, ch,
+      [&](int t) {
+        const Triangle& tri = triangles[t];
+        piece = { points[tri[0]], points[tri[1]], points[tri[2]] };
+        for (size_t k = 0; k < n && piece.size() >= 3; ++k)
+        {
+          clipLeftOf(piece, cell.vertices[k], cell.vertices[(k + 1) % n], scratch);
+          piece.swap(scratch);
+        }
+        if (piece.size() < 3)
+        {
+          return;
+        }
+        const Moments m = polygonMoments(piece, o);
+        if (m.m0 <= 0.0)
+        {
+          return;
+        }
+        // Density in local coordinates: f = d0 + cx * u + cy * v with x = o + (u, v).
+        const Linear& f = linear[t];
+        const double d0 = f.c0 + f.cx * o.x + f.cy * o.y;
+        const double mass = d0 * m.m0 + f.cx * m.mx + f.cy * m.my;
+        const double mu = d0 * m.mx + f.cx * m.mxx + f.cy * m.mxy;
+        const double mv = d0 * m.my + f.cx * m.mxy + f.cy * m.myy;
+        out.mass += mass;
+        out.moment = out.moment + Vec2{ mu + o.x * mass, mv + o.y * mass };
+        // Density along the cell's edges: pieces of this triangle's clipped boundary that lie on
+        // cell edge k. A cell edge lying exactly on a mesh edge is counted for the triangle on
+        // the cell's side only (a point nudged into the cell must be inside the triangle).
+        const size_t pm = piece.size();
+        for (size_t e = 0; e < pm; ++e)
+        {
+          const Vec2 a = piece[e], b = piece[(e + 1) % pm];
+          const double len = norm(b - a);
+          if (len == 0.0)
+          {
+            continue;
+          }
+          for (size_t k = 0; k < n; ++k)
+          {
+            const int nb = cell.neighbor[k];
+            if (nb < 0)
+            {
+              continue;
+            }
+            const Vec2 ca = cell.vertices[k], cb = cell.vertices[(k + 1) % n];
+            const Vec2 dir = cb - ca;
+            const double dl = norm(dir);
+            const double tol = 1e-12 * (dl + norm(ca - o) + 1e-300);
+            if (std::abs(cross(dir, a - ca)) > tol * dl || std::abs(cross(dir, b - ca)) > tol * dl)
+            {
+              continue;
+            }
+            const Vec2 mid = 0.5 * (a + b);
+            const Vec2 inward = (1e-9 * len / dl) * Vec2{ -dir.y, dir.x };
+            if (!insideTriangle(t, mid + inward))
+            {
+              break;
+            }
+            edgeIntegral[k] += 0.5 * len * (densityAt(t, a) + densityAt(t, b));
+            break;
+          }
+        }
+      },
+      seen, stamp);
+    for (size_t k = 0; k < n; ++k)
+    {
+      if (cell.neighbor[k] >= 0 && edgeIntegral[k] > 0.0)
+      {
+        out.edgeMass.emplace_back(cell.neighbor[k], edgeIntegral[k]);
+      }
+    }
+  }
+
+  bool insideTriangle(int t, Vec2 p) const
+  {
+    const Triangle& tri = triangles[t];
+    for (int k = 0; k < 3; ++k)
+    {
+      const Vec2 a = points[tri[k]], b = points[tri[(k + 1) % 3]];
+      if (cross(b - a, p - a) < 0.0)
+      {
+        return false;
+      }
+    }
+    return true;
+  }
+
+  std::vector<Vec2> clippedBoundary(const PowerCell& cell, double) const override
+  {
+    std::vector<Vec2> poly = cell.vertices, scratch;
+    const size_t n = hull.size();
+    for (size_t k = 0; k < n && poly.size() >= 3; ++k)
+    {
+      clipLeftOf(poly, hull[k], hull[(k + 1) % n], scratch);
+      poly.swap(scratch);
+    }
+    if (poly.size() < 3)
+    {
+      poly.clear();
+    }
+    return poly;
+  }
+};
+
+// Andrew's monotone chain; returns the hull CCW without collinear points.
+std::vector<Vec2> convexHull(std::vector<Vec2> p)
+{
+  std::sort(p.begin(), p.end(), [](Vec2 a, Vec2 b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
+  if (p.size() < 3)
+  {
+    return p;
+  }
+  std::vector<Vec2> h(2 * p.size());
+  size_t k = 0;
+  for (size_t i = 0; i < p.size(); ++i)
+  {
+    while (k >= 2 && cross(h[k - 1] - h[k - 2], p[i] - h[k - 2]) <= 0)
+    {
+      --k;
+    }
+    h[k++] = p[i];
+  }
+  for (size_t i = p.size() - 1, t = k + 1; i > 0; --i)
+  {
+    while (k >= t && cross(h[k - 1] - h[k - 2], p[i - 1] - h[k - 2]) <= 0)
+    {
+      --k;
+    }
+    h[k++] = p[i - 1];
+  }
+  h.resize(k - 1);
+  return h;
+}
+
+} // namespace
+
+std::unique_ptr<SourceMeasure> makeUnitDiskSource()
+{
+  return std::make_unique<UnitDiskSource>();
+}
+
+std::unique_ptr<SourceMeasure> makeTriangulatedSource(const std::vector<Vec2>& points,
+  const std::vector<Triangle>& triangles, const std::vector<double>& density, std::string& error)
+{
+  error.clear();
+  if (triangles.empty())
+  {
+    error = "the source domain has no triangles";
+    return nullptr;
+  }
+  if (!density.empty() && density.size() != points.size())
+  {
+    error = "the source density must have one value per point";
+    return nullptr;
+  }
+  auto src = std::make_unique<TriangulatedSource>();
+  src->points = points;
+  src->triangles = triangles;
+  src->density = density.empty() ? std::vector<double>(points.size(), 1.0) : density;
+  std::vector<char> used(points.size(), 0);
+  double area = 0.0;
+  for (size_t t = 0; t < triangles.size(); ++t)
+  {
+    Triangle tri = triangles[t];
+    for (int k = 0; k < 3; ++k)
+    {
+      if (tri[k] < 0 || static_cast<size_t>(tri[k]) >= points.size())
+      {
+        error = "source triangle " + std::to_string(t) + " refers to a point that does not exist";
+        return nullptr;
+      }
+      const Vec2 p = points[tri[k]];
+      if (!std::isfinite(p.x) || !std::isfinite(p.y))
+      {
+        error = "source point " + std::to_string(tri[k]) + " has a non-finite coordinate";
+        return nullptr;
+      }
+      const double f = src->density[tri[k]];
+      if (!(std::isfinite(f) && f > 0.0))
+      {
+        std::ostringstream s;
+        s << "source density at point " << tri[k] << " is " << f
+          << "; it must be finite and positive";
+        error = s.str();
+        return nullptr;
+      }
+      used[tri[k]] = 1;
+    }
+    const Vec2 a = points[tri[0]], b = points[tri[1]], c = points[tri[2]];
+    double twice = cross(b - a, c - a);
+    if (twice < 0.0)
+    {
+      // Orientation does not matter for a planar domain: store counter-clockwise.
+      std::swap(tri[1], tri[2]);
+      src->triangles[t] = tri;
+      twice = -twice;
+    }
+    if (!(twice > 0.0))
+    {
+      error = "source triangle " + std::to_string(t) + " has zero area";
+      return nullptr;
+    }
+    area += 0.5 * twice;
+    // Linear interpolation of the density over the triangle.
+    const Vec2 pa = points[tri[0]], pb = points[tri[1]], pc = points[tri[2]];
+    const double fa = src->density[tri[0]], fb = src->density[tri[1]], fc = src->density[tri[2]];
+    const double det = cross(pb - pa, pc - pa);
+    const double cx = ((fb - fa) * (pc.y - pa.y) - (fc - fa) * (pb.y - pa.y)) / det;
+    const double cy = ((fc - fa) * (pb.x - pa.x) - (fb - fa) * (pc.x - pa.x)) / det;
+    src->linear.push_back({ fa - cx * pa.x - cy * pa.y, cx, cy });
+    src->total += det / 6.0 * (fa + fb + fc);
+  }
+  std::vector<Vec2> usedPoints;
+  for (size_t i = 0; i < points.size(); ++i)
+  {
+    if (used[i])
+    {
+      usedPoints.push_back(points[i]);
+    }
+  }
+  src->hull = convexHull(usedPoints);
+  double hullArea = 0.0;
+  for (size_t k = 0; k < src->hull.size(); ++k)
+  {
+    hullArea += cross(src->hull[k], src->hull[(k + 1) % src->hull.size()]);
+  }
+  hullArea *= 0.5;
+  if (std::abs(hullArea - area) > 1e-9 * hullArea)
+  {
+    std::ostringstream s;
+    s << "the source domain is not convex (or its triangles overlap): triangle area " << area
+      << " differs from the area of its convex hull " << hullArea;
+    error = s.str();
+    return nullptr;
+  }
+  src->lo = src->hi = src->hull[0];
+  for (const Vec2& p : src->hull)
+  {
+    src->lo = { std::min(src->lo.x, p.x), std::min(src->lo.y, p.y) };
+    src->hi = { std::max(src->hi.x, p.x), std::max(src->hi.y, p.y) };
+  }
+  // Inner disk: centred at the hull's centroid, radius = distance to the nearest hull edge.
+  Vec2 c = { 0.0, 0.0 };
+  for (const Vec2& p : src->hull)
+  {
+    c = c + p;
+  }
+  c = (1.0 / src->hull.size()) * c;
+  double r = std::numeric_limits<double>::max();
+  for (size_t k = 0; k < src->hull.size(); ++k)
+  {
+    const Vec2 a = src->hull[k], b = src->hull[(k + 1) % src->hull.size()];
+    r = std::min(r, cross(b - a, c - a) / norm(b - a));
+  }
+  src->innerCenter = c;
+  src->innerRadius = r;
+  // Bucket grid with about one triangle per bucket.
+  const double w = src->hi.x - src->lo.x, h = src->hi.y - src->lo.y;
+  const double side = std::sqrt(w * h / static_cast<double>(triangles.size()));
+  src->gridNx = std::clamp(static_cast<int>(w / side), 1, 4096);
+  src->gridNy = std::clamp(static_cast<int>(h / side), 1, 4096);
+  src->cellW = w / src->gridNx;
+  src->cellH = h / src->gridNy;
+  src->buckets.assign(static_cast<size_t>(src->gridNx) * src->gridNy, {});
+  for (size_t t = 0; t < triangles.size(); ++t)
+  {
+    const Triangle& tri = src->triangles[t];
+    Vec2 l = points[tri[0]], u = points[tri[0]];
+    for (int k = 1; k < 3; ++k)
+    {
+      const Vec2 p = points[tri[k]];
+      l = { std::min(l.x, p.x), std::min(l.y, p.y) };
+      u = { std::max(u.x, p.x), std::max(u.y, p.y) };
+    }
+    const int i0 = std::clamp(static_cast<int>((l.x - src->lo.x) / src->cellW), 0, src->gridNx - 1);
+    const int i1 = std::clamp(static_cast<int>((u.x - src->lo.x) / src->cellW), 0, src->gridNx - 1);
+    const int j0 = std::clamp(static_cast<int>((l.y - src->lo.y) / src->cellH), 0, src->gridNy - 1);
+    const int j1 = std::clamp(static_cast<int>((u.y - src->lo.y) / src->cellH), 0, src->gridNy - 1);
+    for (int j = j0; j <= j1; ++j)
+    {
+      for (int i = i0; i <= i1; ++i)
+      {
+        src->buckets[j * src->gridNx + i].push_back(static_cast<int>(t));
+      }
+    }
+  }
+  return src;
+}
+
+} // namespace otparam

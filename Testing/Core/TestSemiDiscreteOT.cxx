@@ -1,0 +1,225 @@
+// The damped Newton solver against closed forms and known transport maps.
+#include "SemiDiscreteOT.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <random>
+
+using namespace otparam;
+
+namespace
+{
+constexpr double Pi = 3.14159265358979323846;
+
+std::vector<Vec2> randomInDisk(size_t n, unsigned seed, double radius = 1.0)
+{
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-radius, radius);
+  std::vector<Vec2> y;
+  while (y.size() < n)
+  {
+    const Vec2 p{ u(rng), u(rng) };
+    if (dot(p, p) < radius * radius)
+      y.push_back(p);
+  }
+  return y;
+}
+
+// Gaussian mixture whose values span `contrast` (max / min).
+std::vector<double> mixtureMasses(const std::vector<Vec2>& y, double contrast)
+{
+  const Vec2 c1{ 0.4, 0.3 }, c2{ -0.5, -0.2 };
+  std::vector<double> m;
+  for (const Vec2& p : y)
+    m.push_back(std::exp(-dot(p - c1, p - c1) / 0.05) + 0.5 * std::exp(-dot(p - c2, p - c2) / 0.02));
+  const double mx = *std::max_element(m.begin(), m.end());
+  for (double& v : m)
+    v = mx / contrast + v * (1 - 1 / contrast);
+  return m;
+}
+
+double sum(const std::vector<double>& v) { return std::accumulate(v.begin(), v.end(), 0.0); }
+} // namespace
+
+TEST(SemiDiscreteOT, VoronoiMassesConvergeInZeroIterations)
+{
+  const auto y = randomInDisk(500, 1);
+  std::vector<double> h;
+  for (const Vec2& p : y)
+    h.push_back(0.5 * dot(p, p));
+  auto disk = makeUnitDiskSource();
+  const CellMeasures voronoi = computeCellMeasures(*disk, y, h);
+  const OTResult r = solveSemiDiscreteOT(*disk, y, voronoi.mass);
+  EXPECT_TRUE(r.converged) << r.message;
+  EXPECT_EQ(r.iterations, 0);
+  for (size_t i = 0; i < y.size(); ++i)
+    EXPECT_EQ(r.heights[i], h[i]);
+}
+
+TEST(SemiDiscreteOT, UniformMassesOnDisk)
+{
+  const auto y = randomInDisk(2000, 2);
+  auto disk = makeUnitDiskSource();
+  const OTResult r = solveSemiDiscreteOT(*disk, y, std::vector<double>(y.size(), 1.0));
+  ASSERT_TRUE(r.converged) << r.message;
+  EXPECT_LE(r.relativeError, 1e-10);
+  EXPECT_NEAR(sum(r.cellMass), Pi, 1e-12 * Pi);
+  EXPECT_EQ(r.gradientNormHistory.size(), static_cast<size_t>(r.iterations));
+  EXPECT_EQ(r.stepLengthHistory.size(), static_cast<size_t>(r.iterations));
+  // Damped Newton: the gradient norm decreases at every accepted step.
+  for (size_t k = 1; k < r.gradientNormHistory.size(); ++k)
+    EXPECT_LT(r.gradientNormHistory[k], r.gradientNormHistory[k - 1]);
+  // Centroids lie in the disk.
+  for (const Vec2& c : r.centroids)
+    EXPECT_LE(norm(c), 1.0);
+}
+
+TEST(SemiDiscreteOT, MassesOverSixOrdersOfMagnitude)
+{
+  const auto y = randomInDisk(3000, 4);
+  const auto m = mixtureMasses(y, 1e6);
+  const double mn = *std::min_element(m.begin(), m.end()), mx = *std::max_element(m.begin(), m.end());
+  ASSERT_NEAR(mx / mn, 1e6, 1e3);
+  auto disk = makeUnitDiskSource();
+  const OTResult r = solveSemiDiscreteOT(*disk, y, m);
+  ASSERT_TRUE(r.converged) << r.message;
+  EXPECT_LE(r.relativeError, 1e-10);
+  EXPECT_NEAR(sum(r.cellMass), Pi, 1e-12 * Pi);
+  for (size_t i = 0; i < y.size(); ++i)
+    EXPECT_NEAR(r.cellMass[i] / r.mass[i], 1.0, 1e-10);
+}
+
+TEST(SemiDiscreteOT, DiracsOutsideTheDisk)
+{
+  // Diracs in a disk of radius 0.5 centred at (3, -2): no Voronoi cell of most meets the disk.
+  auto y = randomInDisk(300, 5, 0.5);
+  for (Vec2& p : y)
+    p = p + Vec2{ 3.0, -2.0 };
+  auto disk = makeUnitDiskSource();
+  const OTResult r = solveSemiDiscreteOT(*disk, y, mixtureMasses(y, 10.0));
+  ASSERT_TRUE(r.converged) << r.message;
+  EXPECT_LE(r.relativeError, 1e-10);
+}
+
+TEST(SemiDiscreteOT, NotConvergedIsReportedHonestly)
+{
+  const auto y = randomInDisk(1000, 6);
+  auto disk = makeUnitDiskSource();
+  OTOptions opt;
+  opt.maxIterations = 1;
+  const OTResult r = solveSemiDiscreteOT(*disk, y, mixtureMasses(y, 1e4), opt);
+  EXPECT_FALSE(r.converged);
+  EXPECT_GT(r.relativeError, opt.tolerance);
+  EXPECT_EQ(r.iterations, 1);
+  EXPECT_NE(r.message.find("not converged"), std::string::npos) << r.message;
+}
+
+TEST(SemiDiscreteOT, AbortFromProgressCallback)
+{
+  const auto y = randomInDisk(500, 7);
+  auto disk = makeUnitDiskSource();
+  OTOptions opt;
+  int calls = 0;
+  opt.progress = [&](int, double) { return ++calls < 2; };
+  const OTResult r = solveSemiDiscreteOT(*disk, y, mixtureMasses(y, 1e4), opt);
+  EXPECT_TRUE(r.aborted);
+  EXPECT_FALSE(r.converged);
+  EXPECT_EQ(calls, 2);
+}
+
+TEST(SemiDiscreteOT, RejectsBadDiracs)
+{
+  auto disk = makeUnitDiskSource();
+  EXPECT_NE(solveSemiDiscreteOT(*disk, {}, {}).message.find("no Diracs"), std::string::npos);
+  EXPECT_NE(validateDiracs({ { 0, 0 }, { NAN, 0 } }, { 1, 1 }).find("ids 1"), std::string::npos);
+  EXPECT_NE(validateDiracs({ { 0, 0 }, { 0.5, 0 } }, { 1, 0 }).find("Mass"), std::string::npos);
+  EXPECT_NE(validateDiracs({ { 0, 0 }, { 0.5, 0 } }, { -1, 1 }).find("ids 0"), std::string::npos);
+  EXPECT_NE(validateDiracs({ { 0, 0 }, { 0.5, 0 }, { 0, 0 } }, { 1, 1, 1 }).find("ids 0 2"),
+    std::string::npos);
+}
+
+// Uniform disk -> radial density rho(r) = 1 + a r^2 (normalized): the optimal map is radial and
+// monotone, x -> R(|x|) x/|x| with |x|^2 = F(R), F the target's radial CDF. Diracs of equal mass
+// on a sunflower spiral in the target measure; each cell's centroid must sit at radius sqrt(F(|y|)).
+double radialCentroidError(int n)
+{
+  const double a = 3.0, golden = Pi * (3.0 - std::sqrt(5.0));
+  std::vector<Vec2> y(n);
+  std::vector<double> sourceRadius(n);
+  for (int i = 0; i < n; ++i)
+  {
+    const double u = (i + 0.5) / n; // F(R) of the Dirac
+    const double s = (-1.0 + std::sqrt(1.0 + 2.0 * a * u * (1.0 + a / 2.0))) / a; // R^2
+    const double R = std::sqrt(s), phi = i * golden;
+    y[i] = { R * std::cos(phi), R * std::sin(phi) };
+    sourceRadius[i] = std::sqrt(u);
+  }
+  auto disk = makeUnitDiskSource();
+  const OTResult r = solveSemiDiscreteOT(*disk, y, std::vector<double>(n, 1.0));
+  EXPECT_TRUE(r.converged) << r.message;
+  double rms = 0.0;
+  for (int i = 0; i < n; ++i)
+  {
+    const double e = norm(r.centroids[i]) - sourceRadius[i];
+    rms += e * e;
+  }
+  return std::sqrt(rms / n);
+}
+
+TEST(SemiDiscreteOT, RadialMapMatchesTheAnalyticInverse)
+{
+  const double e3 = radialCentroidError(1000), e4 = radialCentroidError(10000);
+  std::cout << "RMS centroid radius error: n=1e3 " << e3 << ", n=1e4 " << e4 << std::endl;
+  EXPECT_LT(e3, 1e-2);
+  EXPECT_LT(e4, 0.5 * e3);
+}
+
+// Linear density f = 1 + x + 2y on the unit square; Diracs on a horizontal line have vertical
+// strips as cells, and the strip [c0, c1] carries mass M(c1) - M(c0), M(c) = 2c + c^2/2.
+TEST(SemiDiscreteOT, PiecewiseLinearDensityOnSquare)
+{
+  const int grid = 6;
+  std::vector<Vec2> pts;
+  std::vector<double> f;
+  for (int j = 0; j <= grid; ++j)
+    for (int i = 0; i <= grid; ++i)
+    {
+      pts.push_back({ double(i) / grid, double(j) / grid });
+      f.push_back(1 + pts.back().x + 2 * pts.back().y);
+    }
+  std::vector<Triangle> tris;
+  for (int j = 0; j < grid; ++j)
+    for (int i = 0; i < grid; ++i)
+    {
+      const int a = j * (grid + 1) + i, b = a + 1, c = a + grid + 2, d = a + grid + 1;
+      tris.push_back({ a, b, c });
+      tris.push_back({ a, c, d });
+    }
+  std::string error;
+  auto square = makeTriangulatedSource(pts, tris, f, error);
+  ASSERT_TRUE(square) << error;
+  auto M = [](double c) { return 2 * c + c * c / 2; };
+  const std::vector<double> cuts = { 0.0, 0.13, 0.31, 0.5, 0.77, 1.0 };
+  std::vector<Vec2> y;
+  std::vector<double> m;
+  for (size_t k = 0; k + 1 < cuts.size(); ++k)
+  {
+    y.push_back({ 0.1 + 0.2 * k, 0.5 });
+    m.push_back(M(cuts[k + 1]) - M(cuts[k]));
+  }
+  const OTResult r = solveSemiDiscreteOT(*square, y, m);
+  ASSERT_TRUE(r.converged) << r.message;
+  EXPECT_NEAR(sum(r.cellMass), 2.5, 1e-13);
+  for (size_t k = 0; k < y.size(); ++k)
+  {
+    const double c0 = cuts[k], c1 = cuts[k + 1];
+    const double mx = (c1 * c1 + c1 * c1 * c1 / 3) - (c0 * c0 + c0 * c0 * c0 / 3);
+    const double my = 7.0 / 6.0 * (c1 - c0) + (c1 * c1 - c0 * c0) / 4;
+    EXPECT_NEAR(r.cellMass[k], m[k], 1e-10 * m[k]);
+    EXPECT_NEAR(r.centroids[k].x, mx / m[k], 1e-9);
+    EXPECT_NEAR(r.centroids[k].y, my / m[k], 1e-9);
+  }
+}

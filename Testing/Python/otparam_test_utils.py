@@ -1,0 +1,139 @@
+"""Helpers shared by the Python tests: inputs for the filters and checks on their outputs."""
+
+import math
+import random
+import sys
+
+from vtkmodules.util.misc import calldata_type
+from vtkmodules.util.vtkConstants import VTK_STRING
+from vtkmodules.vtkCommonCore import vtkCommand, vtkDoubleArray, vtkPoints
+from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData
+
+FAILURES = []
+
+
+def check(condition, message):
+    """Records a failed check (all checks run, the script fails at the end)."""
+    if not condition:
+        FAILURES.append(message)
+        print("FAIL:", message, flush=True)
+    return condition
+
+
+def finish():
+    if FAILURES:
+        print(f"{len(FAILURES)} check(s) failed", flush=True)
+        sys.exit(1)
+    print("all checks passed", flush=True)
+
+
+def random_disk_points(n, seed, radius=0.95):
+    """n points uniform in the disk of the given radius (rejection sampling, fixed seed)."""
+    rng = random.Random(seed)
+    points = []
+    while len(points) < n:
+        x, y = rng.uniform(-radius, radius), rng.uniform(-radius, radius)
+        if x * x + y * y < radius * radius:
+            points.append((x, y))
+    return points
+
+
+def make_diracs(points, masses, z=None):
+    """vtkPolyData with the given (x, y) points (z = 0 unless given) and point array Mass."""
+    vtk_points = vtkPoints()
+    vtk_points.SetDataTypeToDouble()
+    for i, (x, y) in enumerate(points):
+        vtk_points.InsertNextPoint(x, y, 0.0 if z is None else z[i])
+    mass = vtkDoubleArray()
+    mass.SetName("Mass")
+    for m in masses:
+        mass.InsertNextValue(m)
+    data = vtkPolyData()
+    data.SetPoints(vtk_points)
+    data.GetPointData().AddArray(mass)
+    return data
+
+
+def make_domain(points, triangles, density=None):
+    """Planar source domain: (x, y, z) points, triangles (or polygons), optional Density."""
+    vtk_points = vtkPoints()
+    vtk_points.SetDataTypeToDouble()
+    for p in points:
+        vtk_points.InsertNextPoint(*p)
+    polys = vtkCellArray()
+    for cell in triangles:
+        polys.InsertNextCell(len(cell), cell)
+    data = vtkPolyData()
+    data.SetPoints(vtk_points)
+    data.SetPolys(polys)
+    if density is not None:
+        array = vtkDoubleArray()
+        array.SetName("Density")
+        for d in density:
+            array.InsertNextValue(d)
+        data.GetPointData().AddArray(array)
+    return data
+
+
+def square_domain(half=1.0, density=None):
+    """The square [-half, half]^2 as 2 triangles."""
+    points = [(-half, -half, 0.0), (half, -half, 0.0), (half, half, 0.0), (-half, half, 0.0)]
+    return make_domain(points, [(0, 1, 2), (0, 2, 3)], density)
+
+
+class MessageRecorder:
+    """Collects the text of ErrorEvent / WarningEvent of a vtkObject (and keeps the log quiet)."""
+
+    def __init__(self, obj, event=vtkCommand.ErrorEvent):
+        self.messages = []
+
+        @calldata_type(VTK_STRING)
+        def callback(_caller, _event, text):
+            self.messages.append(text)
+
+        self._callback = callback
+        obj.AddObserver(event, callback)
+
+    def text(self):
+        return "\n".join(self.messages)
+
+
+def field_value(data, name):
+    array = data.GetFieldData().GetAbstractArray(name)
+    if array is None:
+        return None
+    if array.IsA("vtkStringArray"):
+        return array.GetValue(0)
+    return array.GetTuple1(0)
+
+
+def snapshot(data):
+    """Everything of a vtkPolyData that a filter could modify, for an equality check."""
+    result = {"mtime": data.GetMTime(), "npoints": data.GetNumberOfPoints()}
+    points = data.GetPoints()
+    result["points"] = (
+        [points.GetPoint(i) for i in range(points.GetNumberOfPoints())] if points else None
+    )
+    arrays = {}
+    for attributes in (data.GetPointData(), data.GetCellData(), data.GetFieldData()):
+        for k in range(attributes.GetNumberOfArrays()):
+            array = attributes.GetAbstractArray(k)
+            if array.IsA("vtkDataArray"):
+                values = [array.GetTuple(t) for t in range(array.GetNumberOfTuples())]
+            else:
+                values = [array.GetVariantValue(t).ToString() for t in range(array.GetNumberOfValues())]
+            arrays[(attributes.GetClassName(), array.GetName())] = values
+    result["arrays"] = arrays
+    result["ncells"] = data.GetNumberOfCells()
+    return result
+
+
+def same(a, b):
+    """Equality that treats NaN == NaN (the bad-input tests put NaNs in)."""
+    if isinstance(a, float) and isinstance(b, float):
+        return a == b or (math.isnan(a) and math.isnan(b))
+    if isinstance(a, (list, tuple)) and isinstance(b, (list, tuple)):
+        return len(a) == len(b) and all(same(x, y) for x, y in zip(a, b))
+    if isinstance(a, dict) and isinstance(b, dict):
+        return a.keys() == b.keys() and all(same(a[k], b[k]) for k in a)
+    return a == b
