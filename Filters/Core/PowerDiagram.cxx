@@ -5,9 +5,6 @@
 #include <CGAL/Regular_triangulation_face_base_2.h>
 #include <CGAL/Regular_triangulation_vertex_base_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
-#include <CGAL/hilbert_sort.h>
-#include <CGAL/property_map.h>
-#include <CGAL/Spatial_sort_traits_adapter_2.h>
 
 #include <algorithm>
 #include <utility>
@@ -155,26 +152,6 @@ void PowerDiagram::cell(int i, Vec2 lo, Vec2 hi, PowerCell& out) const
       return;
     }
   }
-}
-
-std::vector<int> hilbertOrder(const std::vector<Vec2>& points)
-{
-  std::vector<std::pair<K::Point_2, int>> tagged;
-  tagged.reserve(points.size());
-  for (size_t i = 0; i < points.size(); ++i)
-  {
-    tagged.emplace_back(K::Point_2(points[i].x, points[i].y), static_cast<int>(i));
-  }
-  using Traits = CGAL::Spatial_sort_traits_adapter_2<K,
-    CGAL::First_of_pair_property_map<std::pair<K::Point_2, int>>>;
-  CGAL::hilbert_sort(tagged.begin(), tagged.end(), Traits());
-  std::vector<int> order;
-  order.reserve(points.size());
-  for (const auto& t : tagged)
-  {
-    order.push_back(t.second);
-  }
-  return order;
 }
 
 } // namespace otparam

@@ -44,10 +44,6 @@ private:
   int HiddenCount = 0;
 };
 
-// Indices of the points in Hilbert-curve order (CGAL's spatial sort): consecutive entries are
-// close in the plane, which makes compact groups for coarse-to-fine solves.
-std::vector<int> hilbertOrder(const std::vector<Vec2>& points);
-
 } // namespace otparam
 
 #endif

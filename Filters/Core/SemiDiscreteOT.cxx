@@ -325,10 +325,6 @@ void voronoiStart(const SourceMeasure& source, const std::vector<Vec2>& diracs,
   evaluate(source, diracs, h, diagram, ev, result);
 }
 
-constexpr size_t CoarsestLevel = 3000;
-constexpr int GroupSize = 4;
-constexpr double CoarseTolerance = 1e-6;
-
 // Damped Newton from heights h whose cells are all non-empty (ev evaluated at h).
 // Records histories and stops as documented in OTResult.
 void dampedNewton(const SourceMeasure& source, const std::vector<Vec2>& diracs,
@@ -344,6 +340,7 @@ void dampedNewton(const SourceMeasure& source, const std::vector<Vec2>& diracs,
   std::vector<Height> trial(n);
   Evaluation trialEv;
   PowerDiagram trialDiagram;
+  double lastStep = 1.0;
   for (int it = 0;; ++it)
   {
     result.iterations = it;
@@ -385,7 +382,10 @@ void dampedNewton(const SourceMeasure& source, const std::vector<Vec2>& diracs,
       result.message = "the Newton system could not be factorized (disconnected cells?)";
       return;
     }
-    double lambda = 1.0;
+    // Backtracking starts at 4x the last accepted step (a full step first, and always near the
+    // solution): rejected trials cost a whole evaluation each, and high-contrast problems
+    // need damped steps for many iterations in a row.
+    double lambda = std::min(1.0, 4.0 * lastStep);
     bool accepted = false;
     for (int halving = 0; halving < 40; ++halving, lambda *= 0.5)
     {
@@ -419,92 +419,13 @@ void dampedNewton(const SourceMeasure& source, const std::vector<Vec2>& diracs,
     }
     result.gradientNormHistory.push_back(gnorm);
     result.stepLengthHistory.push_back(lambda);
+    lastStep = lambda;
     h.swap(trial);
     std::swap(ev, trialEv);
     std::swap(diagram, trialDiagram);
   }
 }
 
-// Coarse-to-fine start (after Mérigot's multiscale method): merge groups of Diracs that are
-// consecutive along a Hilbert curve, solve the coarse problem, and give each fine Dirac the
-// heights that split its group's coarse cell like the Voronoi diagram of the group, scaled to
-// the cell: h_i = H_j + <x_j, y_i - Y_j> + s_j |y_i - Y_j|^2 / 2 (x_j the coarse cell's centroid).
-bool coarseToFineStart(const SourceMeasure& source, const std::vector<Vec2>& diracs,
-  const std::vector<double>& nu, std::vector<Height>& h, OTResult& result)
-{
-  const size_t n = diracs.size();
-  const std::vector<int> order = hilbertOrder(diracs);
-  const size_t groups = (n + GroupSize - 1) / GroupSize;
-  std::vector<int> parent(n);
-  std::vector<Vec2> coarse(groups);
-  std::vector<double> coarseMass(groups, 0.0);
-  for (size_t k = 0; k < n; ++k)
-  {
-    const int i = order[k];
-    const size_t j = k / GroupSize;
-    parent[i] = static_cast<int>(j);
-    coarseMass[j] += nu[i];
-    coarse[j] = coarse[j] + nu[i] * diracs[i];
-  }
-  for (size_t j = 0; j < groups; ++j)
-  {
-    coarse[j] = (1.0 / coarseMass[j]) * coarse[j];
-  }
-  if (!validateDiracs(coarse, coarseMass).empty())
-  {
-    return false;
-  }
-  std::vector<double> spread(groups, 0.0);
-  for (size_t i = 0; i < n; ++i)
-  {
-    const Vec2 e = diracs[i] - coarse[parent[i]];
-    spread[parent[i]] += nu[i] * dot(e, e);
-  }
-
-  std::vector<Height> H;
-  PowerDiagram diagram;
-  Evaluation ev;
-  OTResult coarseResult;
-  if (groups > CoarsestLevel)
-  {
-    if (!coarseToFineStart(source, coarse, coarseMass, H, coarseResult))
-    {
-      return false;
-    }
-    evaluate(source, coarse, H, diagram, ev, coarseResult);
-    if (ev.minMass <= 0.0)
-    {
-      voronoiStart(source, coarse, H, diagram, ev, coarseResult);
-    }
-  }
-  else
-  {
-    voronoiStart(source, coarse, H, diagram, ev, coarseResult);
-  }
-  if (ev.minMass <= 0.0)
-  {
-    return false;
-  }
-  coarseResult.iterations = 0;
-  dampedNewton(source, coarse, coarseMass, H, diagram, ev, CoarseTolerance, 100, {}, coarseResult);
-  result.coarseIterations += coarseResult.iterations + coarseResult.coarseIterations;
-  result.secondsTriangulation += coarseResult.secondsTriangulation;
-  result.secondsIntegration += coarseResult.secondsIntegration;
-  result.secondsAssembly += coarseResult.secondsAssembly;
-  result.secondsSolve += coarseResult.secondsSolve;
-
-  h.resize(n);
-  for (size_t i = 0; i < n; ++i)
-  {
-    const size_t j = parent[i];
-    const Vec2 centroid = ev.cellMass[j] > 0.0 ? (1.0 / ev.cellMass[j]) * ev.moment[j] : coarse[j];
-    const Vec2 e = diracs[i] - coarse[j];
-    const double sigma2 = spread[j] / coarseMass[j];
-    const double scale = sigma2 > 0.0 ? std::sqrt(ev.cellMass[j] / (2.0 * Pi * sigma2)) : 0.0;
-    h[i] = H[j] + static_cast<Height>(dot(centroid, e)) + static_cast<Height>(0.5 * scale * dot(e, e));
-  }
-  return true;
-}
 } // namespace
 
 OTResult solveSemiDiscreteOT(const SourceMeasure& source, const std::vector<Vec2>& diracs,
@@ -529,17 +450,7 @@ OTResult solveSemiDiscreteOT(const SourceMeasure& source, const std::vector<Vec2
   std::vector<Height> h;
   PowerDiagram diagram;
   Evaluation ev;
-  bool started = false;
-  if (options.coarseToFine && static_cast<size_t>(n) > CoarsestLevel &&
-    coarseToFineStart(source, diracs, nu, h, result))
-  {
-    evaluate(source, diracs, h, diagram, ev, result);
-    started = ev.minMass > 0.0;
-  }
-  if (!started)
-  {
-    voronoiStart(source, diracs, h, diagram, ev, result);
-  }
+  voronoiStart(source, diracs, h, diagram, ev, result);
   if (ev.minMass <= 0.0)
   {
     std::ostringstream msg;

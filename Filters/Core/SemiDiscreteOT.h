@@ -17,8 +17,6 @@ struct OTOptions
 {
   double tolerance = 1e-10;    // largest relative cell-mass error accepted
   int maxIterations = 200;     // Newton iterations
-  // Start large problems from the solution of a coarser one (groups of 4 Diracs merged).
-  bool coarseToFine = true;
   // Called once per Newton iteration with (iteration, relative error); return false to abort.
   std::function<bool(int, double)> progress;
 };
@@ -27,8 +25,7 @@ struct OTResult
 {
   bool converged = false;
   bool aborted = false;
-  int iterations = 0;                  // Newton iterations on the given Diracs
-  int coarseIterations = 0;            // Newton iterations on all coarser levels together
+  int iterations = 0;
   double relativeError = 0.0;          // max_i |cellMass_i - mass_i| / mass_i
   std::vector<double> mass;            // target masses after rescaling to the source's total
   std::vector<double> heights;         // h_i

@@ -1,0 +1,207 @@
+// Benchmark of the semi-discrete OT solver: n random Diracs in the unit disk with
+// Gaussian-mixture masses, uniform disk source, tolerance 1e-10. Each size runs in a child
+// process so that its peak memory is its own; the table gives the median of the runs.
+//
+//   otparam_benchmark [--repeat R] [--contrast C] [N ...]     (default N: 1000 10000 100000)
+#include "PowerDiagram.h"
+#include "SemiDiscreteOT.h"
+
+#include <Eigen/Sparse>
+#include <Eigen/SparseCholesky>
+
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <random>
+#include <string>
+#include <vector>
+
+using namespace otparam;
+
+namespace
+{
+struct Row
+{
+  double n, iterations, triangulation, integration, assembly, solve, total, reference, peakMiB,
+    error, converged;
+};
+
+double seconds(std::chrono::steady_clock::time_point t0)
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+std::vector<Vec2> randomInDisk(size_t n, unsigned seed)
+{
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::vector<Vec2> y;
+  y.reserve(n);
+  while (y.size() < n)
+  {
+    const Vec2 p{ u(rng), u(rng) };
+    if (dot(p, p) < 1)
+      y.push_back(p);
+  }
+  return y;
+}
+
+std::vector<Vec2> g_y;
+std::vector<double> g_m;
+
+void makeProblem(size_t n, double contrast, unsigned seed)
+{
+  g_y = randomInDisk(n, seed);
+  const Vec2 c1{ 0.4, 0.3 }, c2{ -0.5, -0.2 };
+  g_m.clear();
+  for (const Vec2& p : g_y)
+    g_m.push_back(std::exp(-dot(p - c1, p - c1) / 0.05) + 0.5 * std::exp(-dot(p - c2, p - c2) / 0.02));
+  const double mx = *std::max_element(g_m.begin(), g_m.end());
+  for (double& v : g_m)
+    v = mx / contrast + v * (1 - 1 / contrast);
+}
+
+// The floor for one Newton iteration: one regular triangulation plus one sparse factorization
+// of its graph Laplacian (Eigen's SimplicialLDLT, as the solver uses below 2e5 Diracs).
+double referenceIteration()
+{
+  const auto t0 = std::chrono::steady_clock::now();
+  std::vector<Height> h(g_y.size());
+  for (size_t i = 0; i < g_y.size(); ++i)
+    h[i] = 0.5L * dot(g_y[i], g_y[i]);
+  PowerDiagram diagram;
+  diagram.build(g_y, h);
+  const int n = static_cast<int>(g_y.size()) - 1;
+  std::vector<Eigen::Triplet<double>> t;
+  for (int i = 0; i < n; ++i)
+  {
+    double diag = 1e-12;
+    for (const int* j = diagram.neighborsBegin(i); j != diagram.neighborsEnd(i); ++j)
+    {
+      diag += 1.0;
+      if (*j < i)
+        t.emplace_back(i, *j, -1.0);
+    }
+    t.emplace_back(i, i, diag);
+  }
+  Eigen::SparseMatrix<double> L(n, n);
+  L.setFromTriplets(t.begin(), t.end());
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower> ldlt(L);
+  return ldlt.info() == Eigen::Success ? seconds(t0) : NAN;
+}
+
+Row runOnce(size_t n, double contrast, unsigned seed)
+{
+  makeProblem(n, contrast, seed);
+  Row row{};
+  row.n = static_cast<double>(n);
+  row.reference = referenceIteration();
+  auto disk = makeUnitDiskSource();
+  const auto t0 = std::chrono::steady_clock::now();
+  const OTResult r = solveSemiDiscreteOT(*disk, g_y, g_m);
+  row.total = seconds(t0);
+  row.iterations = r.iterations;
+  row.triangulation = r.secondsTriangulation;
+  row.integration = r.secondsIntegration;
+  row.assembly = r.secondsAssembly;
+  row.solve = r.secondsSolve;
+  row.error = r.relativeError;
+  row.converged = r.converged;
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  row.peakMiB = usage.ru_maxrss / 1024.0;
+  return row;
+}
+
+// Runs in a child process; the row comes back through a pipe.
+bool runInChild(size_t n, double contrast, unsigned seed, Row& row)
+{
+  int fd[2];
+  if (pipe(fd) != 0)
+    return false;
+  const pid_t pid = fork();
+  if (pid == 0)
+  {
+    close(fd[0]);
+    const Row r = runOnce(n, contrast, seed);
+    const ssize_t written = write(fd[1], &r, sizeof r);
+    _exit(written == static_cast<ssize_t>(sizeof r) ? 0 : 1);
+  }
+  close(fd[1]);
+  const ssize_t got = read(fd[0], &row, sizeof row);
+  close(fd[0]);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  return got == static_cast<ssize_t>(sizeof row) && WIFEXITED(status) && WEXITSTATUS(status) == 0;
+}
+
+double median(std::vector<double> v)
+{
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+} // namespace
+
+int main(int argc, char** argv)
+{
+  int repeat = 3;
+  double contrast = 1e4;
+  std::vector<size_t> sizes;
+  for (int a = 1; a < argc; ++a)
+  {
+    if (!std::strcmp(argv[a], "--repeat") && a + 1 < argc)
+      repeat = std::max(1, std::atoi(argv[++a]));
+    else if (!std::strcmp(argv[a], "--contrast") && a + 1 < argc)
+      contrast = std::atof(argv[++a]);
+    else
+      sizes.push_back(static_cast<size_t>(std::atof(argv[a])));
+  }
+  if (sizes.empty())
+    sizes = { 1000, 10000, 100000 };
+
+  std::printf("Semi-discrete OT, uniform unit disk -> n random Diracs, Gaussian-mixture masses of "
+              "contrast %.0e, tolerance 1e-10; median of %d runs (seeds 1..%d)\n",
+    contrast, repeat, repeat);
+  std::printf("| n | Newton its | triangulation s | integration s | assembly s | solve s | total s "
+              "| s / iteration | 1 RT + 1 factorization s | ratio | peak MiB | rel. error | "
+              "converged |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  for (size_t n : sizes)
+  {
+    std::vector<Row> rows;
+    for (int k = 0; k < repeat; ++k)
+    {
+      Row row;
+      if (runInChild(n, contrast, static_cast<unsigned>(k + 1), row))
+        rows.push_back(row);
+    }
+    if (rows.empty())
+    {
+      std::printf("| %zu | failed |\n", n);
+      continue;
+    }
+    auto med = [&](double Row::*field) {
+      std::vector<double> v;
+      for (const Row& r : rows)
+        v.push_back(r.*field);
+      return median(v);
+    };
+    const double its = med(&Row::iterations), total = med(&Row::total);
+    const double perIteration = total / std::max(1.0, its), ref = med(&Row::reference);
+    std::printf("| %zu | %.0f | %.3f | %.3f | %.3f | %.3f | %.3f | %.4f | %.4f | %.1f | %.0f | "
+                "%.1e | %d/%zu |\n",
+      n, its, med(&Row::triangulation), med(&Row::integration), med(&Row::assembly),
+      med(&Row::solve), total, perIteration, ref, perIteration / ref, med(&Row::peakMiB),
+      med(&Row::error),
+      static_cast<int>(std::count_if(rows.begin(), rows.end(), [](const Row& r) { return r.converged > 0; })),
+      rows.size());
+    std::fflush(stdout);
+  }
+  return 0;
+}
