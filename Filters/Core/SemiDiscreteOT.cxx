@@ -382,36 +382,35 @@ void dampedNewton(const SourceMeasure& source, const std::vector<Vec2>& diracs,
       result.message = "the Newton system could not be factorized (disconnected cells?)";
       return;
     }
-    // Backtracking starts at 4x the last accepted step (a full step first, and always near the
-    // solution): rejected trials cost a whole evaluation each, and high-contrast problems
-    // need damped steps for many iterations in a row.
-    double lambda = std::min(1.0, 4.0 * lastStep);
+    // The full step first (quadratic convergence near the solution); after it fails, the
+    // backtracking resumes at 4x the last accepted step rather than at 1/2: every rejected
+    // trial costs a whole evaluation, and high-contrast problems need damped steps for many
+    // iterations in a row.
+    double lambda = 1.0;
     bool accepted = false;
-    for (int halving = 0; halving < 40; ++halving, lambda *= 0.5)
+    for (int trialCount = 0; trialCount < 40; ++trialCount)
     {
       for (int i = 0; i < n; ++i)
       {
         trial[i] = h[i] + lambda * d[i];
       }
       evaluate(source, diracs, trial, trialDiagram, trialEv, result);
-      if (trialEv.minMass < eps0)
-      {
-        continue;
-      }
       // KMT's rule guarantees global convergence. Near the solution |g|_2 sits at the rounding
       // level of the largest cells while small cells still have relative errors to remove: a
       // full step that halves the largest relative error is then accepted as well.
-      if (gradientNorm(trialEv.cellMass, nu) <= (1.0 - 0.5 * lambda) * gnorm ||
-        (lambda == 1.0 && relativeError(trialEv.cellMass, nu) < 0.5 * result.relativeError))
+      if (trialEv.minMass >= eps0 &&
+        (gradientNorm(trialEv.cellMass, nu) <= (1.0 - 0.5 * lambda) * gnorm ||
+          (lambda == 1.0 && relativeError(trialEv.cellMass, nu) < 0.5 * result.relativeError)))
       {
         accepted = true;
         break;
       }
+      lambda = lambda == 1.0 ? std::min(0.5, 4.0 * lastStep) : 0.5 * lambda;
     }
     if (!accepted)
     {
       std::ostringstream msg;
-      msg << "Newton step rejected at every damping down to " << lambda << " after " << it
+      msg << "Newton step rejected at every damping down to about " << 2.0 * lambda << " after " << it
           << " iterations (relative error " << result.relativeError
           << "; the tolerance may be below what double precision allows here)";
       result.message = msg.str();
