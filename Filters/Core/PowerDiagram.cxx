@@ -4,6 +4,7 @@
 #include <CGAL/Regular_triangulation_2.h>
 #include <CGAL/Regular_triangulation_face_base_2.h>
 #include <CGAL/Regular_triangulation_vertex_base_2.h>
+#include <CGAL/Triangulation_face_base_with_info_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
 #include <algorithm>
@@ -16,7 +17,8 @@ namespace
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Vbase = CGAL::Regular_triangulation_vertex_base_2<K>;
 using Vb = CGAL::Triangulation_vertex_base_with_info_2<int, K, Vbase>;
-using Fb = CGAL::Regular_triangulation_face_base_2<K>;
+using Fbase = CGAL::Regular_triangulation_face_base_2<K>;
+using Fb = CGAL::Triangulation_face_base_with_info_2<int, K, Fbase>;
 using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
 using Regular = CGAL::Regular_triangulation_2<K, Tds>;
 using WeightedPoint = Regular::Weighted_point;
@@ -45,16 +47,81 @@ void PowerDiagram::build(const std::vector<Vec2>& diracs, const std::vector<Heig
   }
   HiddenCount = static_cast<int>(std::count(Hidden.begin(), Hidden.end(), 1));
 
-  // Adjacency in compressed rows, from the finite edges (also right in dimension 1).
+  Triangles.clear();
+  PowerVertices.clear();
+  RingFace.clear();
+  Offsets.assign(n + 1, 0);
+  Adjacency.clear();
+  Dimension = rt.dimension();
+  if (Dimension == 2)
+  {
+    // Each power vertex is computed once and shared by its three cells, so that the clipped
+    // cells tile the domain exactly: with per-cell clipping, every cell rounds its own copy of
+    // a vertex and the overlaps and gaps (~1e-16 x edge length each) add up over 1e5 cells to
+    // more than 1e-10 of a cell's mass.
+    Triangles.reserve(rt.number_of_faces());
+    PowerVertices.reserve(rt.number_of_faces());
+    for (auto f = rt.all_faces_begin(); f != rt.all_faces_end(); ++f)
+    {
+      if (rt.is_infinite(f))
+      {
+        f->info() = -1;
+        continue;
+      }
+      const int a = f->vertex(0)->info(), b = f->vertex(1)->info(), c = f->vertex(2)->info();
+      f->info() = static_cast<int>(Triangles.size());
+      Triangles.push_back({ a, b, c });
+      PowerVertices.push_back(powerVertex(a, b, c));
+    }
+    // Faces around each vertex, counter-clockwise, and the neighbour across the edge that
+    // follows each face (-1: the edge to the infinite vertex).
+    std::vector<std::pair<int, int>> ring;
+    for (int i = 0; i < n; ++i)
+    {
+      Offsets[i + 1] = Offsets[i];
+    }
+    std::vector<int> ringStart(n, -1), ringSize(n, 0);
+    for (auto v = rt.finite_vertices_begin(); v != rt.finite_vertices_end(); ++v)
+    {
+      const int i = v->info();
+      ringStart[i] = static_cast<int>(RingFace.size());
+      auto fc = rt.incident_faces(v), done = fc;
+      do
+      {
+        const int k = fc->index(v);
+        const auto next = fc->vertex(Regular::cw(k));
+        RingFace.push_back(fc->info());
+        Adjacency.push_back(rt.is_infinite(next) ? -1 : next->info());
+      } while (++fc != done);
+      ringSize[i] = static_cast<int>(RingFace.size()) - ringStart[i];
+    }
+    // Reorder the rings by Dirac id into compressed rows.
+    std::vector<int> faces, neighbors;
+    faces.reserve(RingFace.size());
+    neighbors.reserve(RingFace.size());
+    for (int i = 0; i < n; ++i)
+    {
+      for (int k = 0; k < ringSize[i]; ++k)
+      {
+        faces.push_back(RingFace[ringStart[i] + k]);
+        neighbors.push_back(Adjacency[ringStart[i] + k]);
+      }
+      Offsets[i + 1] = Offsets[i] + ringSize[i];
+    }
+    RingFace.swap(faces);
+    Adjacency.swap(neighbors);
+    return;
+  }
+
+  // Dimension 0 or 1 (one Dirac, or all on a line): adjacency from the finite edges; cells are
+  // cut out of a box by half-planes.
   std::vector<std::pair<int, int>> edges;
-  edges.reserve(6 * static_cast<size_t>(n));
   for (auto e = rt.finite_edges_begin(); e != rt.finite_edges_end(); ++e)
   {
     const int a = e->first->vertex(Regular::cw(e->second))->info();
     const int b = e->first->vertex(Regular::ccw(e->second))->info();
     edges.emplace_back(a, b);
   }
-  Offsets.assign(n + 1, 0);
   for (const auto& e : edges)
   {
     ++Offsets[e.first + 1];
@@ -71,16 +138,22 @@ void PowerDiagram::build(const std::vector<Vec2>& diracs, const std::vector<Heig
     Adjacency[fill[e.first]++] = e.second;
     Adjacency[fill[e.second]++] = e.first;
   }
+}
 
-  Triangles.clear();
-  if (rt.dimension() == 2)
-  {
-    Triangles.reserve(rt.number_of_faces());
-    for (auto f = rt.finite_faces_begin(); f != rt.finite_faces_end(); ++f)
-    {
-      Triangles.push_back({ f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info() });
-    }
-  }
+Vec2 PowerDiagram::powerVertex(int a, int b, int c) const
+{
+  // <x, y_a - y_b> = h_a - h_b and <x, y_a - y_c> = h_a - h_c, with x = y_a + z, in long
+  // double: the right-hand sides are differences of nearly equal heights.
+  using LD = long double;
+  const LD ax = Sites[a].x, ay = Sites[a].y;
+  const LD ux = ax - Sites[b].x, uy = ay - Sites[b].y;
+  const LD vx = ax - Sites[c].x, vy = ay - Sites[c].y;
+  const LD r1 = (Heights[a] - Heights[b]) - (ax * ux + ay * uy);
+  const LD r2 = (Heights[a] - Heights[c]) - (ax * vx + ay * vy);
+  const LD det = ux * vy - uy * vx;
+  const LD zx = (r1 * vy - r2 * uy) / det;
+  const LD zy = (ux * r2 - vx * r1) / det;
+  return { static_cast<double>(ax + zx), static_cast<double>(ay + zy) };
 }
 
 void PowerDiagram::cell(int i, Vec2 lo, Vec2 hi, PowerCell& out) const
@@ -89,6 +162,11 @@ void PowerDiagram::cell(int i, Vec2 lo, Vec2 hi, PowerCell& out) const
   out.neighbor.clear();
   if (Hidden[i])
   {
+    return;
+  }
+  if (Dimension == 2)
+  {
+    ringCell(i, lo, hi, out);
     return;
   }
   // Start from the box; clip by the half-plane of every neighbour, keeping edge labels
@@ -152,6 +230,68 @@ void PowerDiagram::cell(int i, Vec2 lo, Vec2 hi, PowerCell& out) const
       return;
     }
   }
+}
+
+void PowerDiagram::ringCell(int i, Vec2 lo, Vec2 hi, PowerCell& out) const
+{
+  const int begin = Offsets[i], m = Offsets[i + 1] - begin;
+  // Walk from the first finite face after an infinite one: the infinite faces of a hull
+  // Dirac's (unbounded) cell then come last.
+  int start = 0;
+  bool unbounded = false;
+  for (int k = 0; k < m; ++k)
+  {
+    if (RingFace[begin + k] >= 0 && RingFace[begin + (k + m - 1) % m] < 0)
+    {
+      start = k;
+      unbounded = true;
+      break;
+    }
+  }
+  for (int s = 0; s < m; ++s)
+  {
+    const int k = begin + (start + s) % m;
+    if (RingFace[k] >= 0)
+    {
+      out.vertices.push_back(PowerVertices[RingFace[k]]);
+      out.neighbor.push_back(Adjacency[k]);
+    }
+  }
+  if (!unbounded)
+  {
+    return;
+  }
+  // The cell leaves the last power vertex along the bisector with its last neighbour and comes
+  // back to the first one along the bisector with the neighbour before the first face. Close it
+  // with far points, counter-clockwise in steps below 60 degrees so that the closing edges stay
+  // far outside the domain.
+  auto direction = [&](int j) {
+    const Vec2 d = Sites[i] - Sites[j];
+    return (1.0 / norm(d)) * Vec2{ d.y, -d.x }; // the cell is on the left
+  };
+  const Vec2 last = out.vertices.back(), first = out.vertices.front();
+  const Vec2 outDir = direction(out.neighbor.back());
+  const int inNeighbor = Adjacency[begin + (start + m - 1) % m];
+  const Vec2 inDir = direction(inNeighbor);
+  const Vec2 center = 0.5 * (lo + hi);
+  const double far = 2.0 * (0.5 * norm(hi - lo) + norm(last - center) + norm(first - center)) + 1.0;
+  const double a0 = std::atan2(outDir.y, outDir.x);
+  double a1 = std::atan2(-inDir.y, -inDir.x);
+  while (a1 <= a0)
+  {
+    a1 += 2.0 * 3.14159265358979323846;
+  }
+  out.vertices.push_back(last + far * outDir);
+  out.neighbor.push_back(-1);
+  const int steps = static_cast<int>(std::ceil((a1 - a0) / 1.0));
+  for (int t = 1; t < steps; ++t)
+  {
+    const double a = a0 + (a1 - a0) * t / steps;
+    out.vertices.push_back(center + (2.0 * far) * Vec2{ std::cos(a), std::sin(a) });
+    out.neighbor.push_back(-1);
+  }
+  out.vertices.push_back(first - far * inDir);
+  out.neighbor.push_back(inNeighbor);
 }
 
 } // namespace otparam

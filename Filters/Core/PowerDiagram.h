@@ -27,7 +27,8 @@ public:
   // A hidden Dirac has an empty cell in the whole plane.
   bool hidden(int i) const { return Hidden[i] != 0; }
   int hiddenCount() const { return HiddenCount; }
-  // Neighbours of Dirac i in the regular triangulation (one per power edge in the plane).
+  // Neighbours of Dirac i in the regular triangulation (one per power edge in the plane;
+  // -1 stands for the infinite vertex around hull Diracs).
   const int* neighborsBegin(int i) const { return Adjacency.data() + Offsets[i]; }
   const int* neighborsEnd(int i) const { return Adjacency.data() + Offsets[i + 1]; }
   // Cell of Dirac i intersected with the box [lo, hi] (which must contain the domain). Thread-safe.
@@ -36,6 +37,12 @@ public:
   const std::vector<Triangle>& triangles() const { return Triangles; }
 
 private:
+  Vec2 powerVertex(int a, int b, int c) const;
+  void ringCell(int i, Vec2 lo, Vec2 hi, PowerCell& out) const;
+
+  int Dimension = 0;
+  std::vector<Vec2> PowerVertices; // one per finite face (weighted circumcentre)
+  std::vector<int> RingFace;       // faces around each Dirac, CCW (-1: infinite), rows as Adjacency
   std::vector<Vec2> Sites;
   std::vector<Height> Heights;
   std::vector<int> Offsets, Adjacency;
