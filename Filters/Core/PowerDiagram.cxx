@@ -273,24 +273,28 @@ void PowerDiagram::ringCell(int i, Vec2 lo, Vec2 hi, PowerCell& out) const
   const Vec2 outDir = direction(out.neighbor.back());
   const int inNeighbor = Adjacency[begin + (start + m - 1) % m];
   const Vec2 inDir = direction(inNeighbor);
+  // Each ray's far point depends only on its start (shared with the neighbour's cell) and the
+  // box, so that both cells along it compute the same segment.
   const Vec2 center = 0.5 * (lo + hi);
-  const double far = 2.0 * (0.5 * norm(hi - lo) + norm(last - center) + norm(first - center)) + 1.0;
+  const double boxRadius = 0.5 * norm(hi - lo);
+  const double farOut = 2.0 * (boxRadius + norm(last - center)) + 1.0;
+  const double farIn = 2.0 * (boxRadius + norm(first - center)) + 1.0;
   const double a0 = std::atan2(outDir.y, outDir.x);
   double a1 = std::atan2(-inDir.y, -inDir.x);
   while (a1 <= a0)
   {
     a1 += 2.0 * 3.14159265358979323846;
   }
-  out.vertices.push_back(last + far * outDir);
+  out.vertices.push_back(last + farOut * outDir);
   out.neighbor.push_back(-1);
   const int steps = static_cast<int>(std::ceil((a1 - a0) / 1.0));
   for (int t = 1; t < steps; ++t)
   {
     const double a = a0 + (a1 - a0) * t / steps;
-    out.vertices.push_back(center + (2.0 * far) * Vec2{ std::cos(a), std::sin(a) });
+    out.vertices.push_back(center + (2.0 * (farOut + farIn)) * Vec2{ std::cos(a), std::sin(a) });
     out.neighbor.push_back(-1);
   }
-  out.vertices.push_back(first - far * inDir);
+  out.vertices.push_back(first - farIn * inDir);
   out.neighbor.push_back(inNeighbor);
 }
 

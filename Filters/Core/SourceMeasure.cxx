@@ -253,17 +253,25 @@ private:
     {
       const Vec2 p = cell.vertices[k];
       const Vec2 q = cell.vertices[(k + 1) % n];
+      // The two cells sharing an edge walk it in opposite directions; intersect it with the
+      // circle in one canonical direction so that both get bitwise the same points (the cells
+      // then tile the disk exactly).
+      const bool forward = p.x < q.x || (p.x == q.x && p.y < q.y);
+      const Vec2 a = forward ? p : q, b = forward ? q : p;
       double t0, t1;
-      if (!segmentInsideUnitDisk(p, q, t0, t1))
+      if (!segmentInsideUnitDisk(a, b, t0, t1))
       {
         continue;
       }
+      const bool aOut = t0 > 0.0, bOut = t1 < 1.0;
+      const Vec2 ca = aOut ? onCircle(a + t0 * (b - a)) : a;
+      const Vec2 cb = bOut ? onCircle(a + t1 * (b - a)) : b;
       ChordPiece piece;
       piece.neighbor = cell.neighbor[k];
-      piece.enters = t0 > 0.0;
-      piece.exits = t1 < 1.0;
-      piece.a = piece.enters ? onCircle(p + t0 * (q - p)) : p;
-      piece.b = piece.exits ? onCircle(p + t1 * (q - p)) : q;
+      piece.enters = forward ? aOut : bOut;
+      piece.exits = forward ? bOut : aOut;
+      piece.a = forward ? ca : cb;
+      piece.b = forward ? cb : ca;
       pieces.push_back(piece);
     }
   }

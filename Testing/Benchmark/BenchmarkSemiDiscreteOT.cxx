@@ -85,6 +85,8 @@ double referenceIteration()
     double diag = 1e-12;
     for (const int* j = diagram.neighborsBegin(i); j != diagram.neighborsEnd(i); ++j)
     {
+      if (*j < 0 || *j >= n)
+        continue; // the infinite vertex, or the pinned Dirac
       diag += 1.0;
       if (*j < i)
         t.emplace_back(i, *j, -1.0);
@@ -114,6 +116,8 @@ Row runOnce(size_t n, double contrast, unsigned seed)
   row.solve = r.secondsSolve;
   row.error = r.relativeError;
   row.converged = r.converged;
+  if (!r.converged)
+    std::fprintf(stderr, "n = %zu, seed %u: %s\n", n, seed, r.message.c_str());
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
   row.peakMiB = usage.ru_maxrss / 1024.0;
