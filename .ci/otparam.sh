@@ -27,6 +27,7 @@ packages=(
   libqt5x11extras5-dev
   libopenmpi-dev libdouble-conversion-dev liblz4-dev liblzma-dev libexpat1-dev zlib1g-dev
   libcgal-dev libgmp-dev libmpfr-dev libboost-dev libeigen3-dev libsuitesparse-dev
+  libopenblas0-pthread
   libgtest-dev xvfb xauth
 )
 

@@ -3,6 +3,7 @@
 // process so that its peak memory is its own; the table gives the median of the runs.
 //
 //   otparam_benchmark [--repeat R] [--contrast C] [N ...]     (default N: 1000 10000 100000)
+#include "OTTestProblems.h"
 #include "PowerDiagram.h"
 #include "SemiDiscreteOT.h"
 
@@ -38,34 +39,13 @@ double seconds(std::chrono::steady_clock::time_point t0)
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-std::vector<Vec2> randomInDisk(size_t n, unsigned seed)
-{
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u(-1, 1);
-  std::vector<Vec2> y;
-  y.reserve(n);
-  while (y.size() < n)
-  {
-    const Vec2 p{ u(rng), u(rng) };
-    if (dot(p, p) < 1)
-      y.push_back(p);
-  }
-  return y;
-}
-
 std::vector<Vec2> g_y;
 std::vector<double> g_m;
 
 void makeProblem(size_t n, double contrast, unsigned seed)
 {
-  g_y = randomInDisk(n, seed);
-  const Vec2 c1{ 0.4, 0.3 }, c2{ -0.5, -0.2 };
-  g_m.clear();
-  for (const Vec2& p : g_y)
-    g_m.push_back(std::exp(-dot(p - c1, p - c1) / 0.05) + 0.5 * std::exp(-dot(p - c2, p - c2) / 0.02));
-  const double mx = *std::max_element(g_m.begin(), g_m.end());
-  for (double& v : g_m)
-    v = mx / contrast + v * (1 - 1 / contrast);
+  g_y = testing::randomInDisk(n, seed);
+  g_m = testing::mixtureMasses(g_y, contrast);
 }
 
 // The floor for one Newton iteration: one regular triangulation plus one sparse factorization
@@ -205,6 +185,21 @@ int main(int argc, char** argv)
       med(&Row::error),
       static_cast<int>(std::count_if(rows.begin(), rows.end(), [](const Row& r) { return r.converged > 0; })),
       rows.size());
+    std::fflush(stdout);
+  }
+
+  std::printf("\nRadial ground truth (uniform disk -> density (1 + 3 r^2), equal masses on a "
+              "sunflower): RMS error of the cell centroids' radii against the analytic inverse map\n"
+              "| n | Newton its | seconds | rel. error | RMS centroid radius error |\n"
+              "|---|---|---|---|---|\n");
+  for (size_t n : sizes)
+  {
+    const testing::RadialProblem p = testing::radialProblem(static_cast<int>(n));
+    auto disk = makeUnitDiskSource();
+    const auto t0 = std::chrono::steady_clock::now();
+    const OTResult r = solveSemiDiscreteOT(*disk, p.diracs, p.masses);
+    std::printf("| %zu | %d | %.3f | %.1e | %.2e |\n", n, r.iterations, seconds(t0),
+      r.relativeError, testing::rmsRadiusError(p, r.centroids));
     std::fflush(stdout);
   }
   return 0;

@@ -1,4 +1,5 @@
 // The damped Newton solver against closed forms and known transport maps.
+#include "OTTestProblems.h"
 #include "SemiDiscreteOT.h"
 
 #include <gtest/gtest.h>
@@ -12,34 +13,7 @@ using namespace otparam;
 
 namespace
 {
-constexpr double Pi = 3.14159265358979323846;
-
-std::vector<Vec2> randomInDisk(size_t n, unsigned seed, double radius = 1.0)
-{
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-radius, radius);
-  std::vector<Vec2> y;
-  while (y.size() < n)
-  {
-    const Vec2 p{ u(rng), u(rng) };
-    if (dot(p, p) < radius * radius)
-      y.push_back(p);
-  }
-  return y;
-}
-
-// Gaussian mixture whose values span `contrast` (max / min).
-std::vector<double> mixtureMasses(const std::vector<Vec2>& y, double contrast)
-{
-  const Vec2 c1{ 0.4, 0.3 }, c2{ -0.5, -0.2 };
-  std::vector<double> m;
-  for (const Vec2& p : y)
-    m.push_back(std::exp(-dot(p - c1, p - c1) / 0.05) + 0.5 * std::exp(-dot(p - c2, p - c2) / 0.02));
-  const double mx = *std::max_element(m.begin(), m.end());
-  for (double& v : m)
-    v = mx / contrast + v * (1 - 1 / contrast);
-  return m;
-}
+using namespace otparam::testing;
 
 double sum(const std::vector<double>& v) { return std::accumulate(v.begin(), v.end(), 0.0); }
 } // namespace
@@ -141,32 +115,14 @@ TEST(SemiDiscreteOT, RejectsBadDiracs)
     std::string::npos);
 }
 
-// Uniform disk -> radial density rho(r) = 1 + a r^2 (normalized): the optimal map is radial and
-// monotone, x -> R(|x|) x/|x| with |x|^2 = F(R), F the target's radial CDF. Diracs of equal mass
-// on a sunflower spiral in the target measure; each cell's centroid must sit at radius sqrt(F(|y|)).
+// The radial ground truth of OTTestProblems.h: cell centroids at the analytic T^-1(y_i).
 double radialCentroidError(int n)
 {
-  const double a = 3.0, golden = Pi * (3.0 - std::sqrt(5.0));
-  std::vector<Vec2> y(n);
-  std::vector<double> sourceRadius(n);
-  for (int i = 0; i < n; ++i)
-  {
-    const double u = (i + 0.5) / n; // F(R) of the Dirac
-    const double s = (-1.0 + std::sqrt(1.0 + 2.0 * a * u * (1.0 + a / 2.0))) / a; // R^2
-    const double R = std::sqrt(s), phi = i * golden;
-    y[i] = { R * std::cos(phi), R * std::sin(phi) };
-    sourceRadius[i] = std::sqrt(u);
-  }
+  const RadialProblem p = radialProblem(n);
   auto disk = makeUnitDiskSource();
-  const OTResult r = solveSemiDiscreteOT(*disk, y, std::vector<double>(n, 1.0));
+  const OTResult r = solveSemiDiscreteOT(*disk, p.diracs, p.masses);
   EXPECT_TRUE(r.converged) << r.message;
-  double rms = 0.0;
-  for (int i = 0; i < n; ++i)
-  {
-    const double e = norm(r.centroids[i]) - sourceRadius[i];
-    rms += e * e;
-  }
-  return std::sqrt(rms / n);
+  return rmsRadiusError(p, r.centroids);
 }
 
 TEST(SemiDiscreteOT, RadialMapMatchesTheAnalyticInverse)
