@@ -438,9 +438,16 @@ OTResult solveSemiDiscreteOT(const SourceMeasure& source, const std::vector<Vec2
     return result;
   }
   const int n = static_cast<int>(diracs.size());
-  // In long double: the largest cell (the gauge) absorbs sum(mass) - total, and a double sum
-  // of 1e5 masses is off by ~1e-14 relative, more than 1e-10 of one cell.
-  const long double sum = std::accumulate(masses.begin(), masses.end(), 0.0L);
+  // Compensated, in long double: the largest cell (the gauge) absorbs sum(mass) - total, and a
+  // plain sum of 1e5 masses is off by ~1e-14 relative, ~1e-10 of one cell's mass.
+  long double sum = 0.0L, carry = 0.0L;
+  for (const double m : masses)
+  {
+    const long double y = m - carry;
+    const long double t = sum + y;
+    carry = (t - sum) - y;
+    sum = t;
+  }
   const long double scale = static_cast<long double>(source.totalMass()) / sum;
   result.mass.resize(n);
   for (int i = 0; i < n; ++i)

@@ -145,15 +145,19 @@ public:
         out.edgeMass.emplace_back(p.neighbor, norm(p.b - p.a));
       }
     }
-    // Polygon part, in coordinates local to its first point (tiny cells far from the origin).
+    // Polygon part, in coordinates local to its first point and in long double: the cells
+    // share their vertices bitwise, so these areas tile exactly up to this rounding, and the
+    // largest cell (the gauge) collects the rounding of all the others; in double that is
+    // ~1e-10 of a cell at 1e5 cells.
+    using LD = long double;
     const Vec2 o = pieces.front().a;
-    double area2 = 0.0;
-    Vec2 moment6 = { 0.0, 0.0 };
+    LD area2 = 0.0L, mx6 = 0.0L, my6 = 0.0L;
     auto addTriangleEdge = [&](Vec2 p, Vec2 q) {
-      const Vec2 lp = p - o, lq = q - o;
-      const double c = cross(lp, lq);
+      const LD px = LD(p.x) - o.x, py = LD(p.y) - o.y, qx = LD(q.x) - o.x, qy = LD(q.y) - o.y;
+      const LD c = px * qy - py * qx;
       area2 += c;
-      moment6 = moment6 + c * (lp + lq);
+      mx6 += c * (px + qx);
+      my6 += c * (py + qy);
     };
     const size_t m = pieces.size();
     for (size_t k = 0; k < m; ++k)
@@ -163,8 +167,9 @@ public:
       addTriangleEdge(p.a, p.b);
       addTriangleEdge(p.b, next.a);
     }
-    double area = 0.5 * area2;
-    Vec2 moment = (1.0 / 6.0) * moment6 + area * o;
+    double area = static_cast<double>(area2 / 2);
+    Vec2 moment = { static_cast<double>(mx6 / 6 + area2 / 2 * o.x),
+      static_cast<double>(my6 / 6 + area2 / 2 * o.y) };
     // Circular segments between an exit point and the next entry point.
     for (size_t k = 0; k < m; ++k)
     {
