@@ -220,6 +220,10 @@ private:
       if (size >= CholmodThreshold)
       {
         cholmod = std::make_unique<Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower>>();
+        // AMD only: by default CHOLMOD also tries METIS when AMD's fill looks high, which on
+        // these planar graphs costs more time than it saves.
+        cholmod->cholmod().nmethods = 1;
+        cholmod->cholmod().method[0].ordering = CHOLMOD_AMD;
         cholmod->compute(L);
         return cholmod->info() == Eigen::Success;
       }
