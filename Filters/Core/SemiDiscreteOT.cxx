@@ -9,20 +9,17 @@
 #endif
 
 #include <algorithm>
-#include <memory>
 #include <chrono>
 #include <cmath>
+#include <memory>
 #include <numeric>
 #include <sstream>
-#include <unordered_map>
 
 namespace otparam
 {
 namespace
 {
 using Clock = std::chrono::steady_clock;
-constexpr double Pi = 3.14159265358979323846;
-
 double secondsSince(Clock::time_point t0)
 {
   return std::chrono::duration<double>(Clock::now() - t0).count();
@@ -47,16 +44,19 @@ void sourceBox(const SourceMeasure& source, Vec2& lo, Vec2& hi)
   hi = hi + Vec2{ margin, margin };
 }
 
+// Cell masses, moments and Hessian couplings at the given heights. With stopAtHidden, a hidden
+// Dirac (empty cell) ends the evaluation early with all masses 0: a Newton trial is then
+// rejected anyway, without paying for the integration.
 void evaluate(const SourceMeasure& source, const std::vector<Vec2>& diracs,
-  const std::vector<Height>& heights, PowerDiagram& diagram, Evaluation& ev, OTResult& timing)
+  const std::vector<Height>& heights, PowerDiagram& diagram, Evaluation& ev, OTResult& timing,
+  bool stopAtHidden = true)
 {
   const int n = static_cast<int>(diracs.size());
   auto t0 = Clock::now();
   diagram.build(diracs, heights);
   timing.secondsTriangulation += secondsSince(t0);
-  if (diagram.hiddenCount() > 0)
+  if (stopAtHidden && diagram.hiddenCount() > 0)
   {
-    // A hidden Dirac has an empty cell: the step is rejected without integrating.
     ev.cellMass.assign(n, 0.0);
     ev.moment.assign(n, Vec2{});
     ev.coupling.clear();
@@ -558,7 +558,7 @@ CellMeasures computeCellMeasures(
   PowerDiagram diagram;
   Evaluation ev;
   evaluate(source, diracs, std::vector<Height>(heights.begin(), heights.end()), diagram, ev,
-    unusedTiming);
+    unusedTiming, false);
   CellMeasures measures;
   measures.mass = ev.cellMass;
   measures.centroid.resize(diracs.size());

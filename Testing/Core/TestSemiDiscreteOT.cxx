@@ -179,3 +179,17 @@ TEST(SemiDiscreteOT, PiecewiseLinearDensityOnSquare)
     EXPECT_NEAR(r.centroids[k].y, my / m[k], 1e-9);
   }
 }
+
+TEST(SemiDiscreteOT, CellMeasuresWithAHiddenDirac)
+{
+  // Dirac 2's plane lies below the others everywhere: its cell is empty, the other two split
+  // the disk along x = 0.
+  const std::vector<Vec2> y = { { -0.5, 0.0 }, { 0.5, 0.0 }, { 0.0, 0.0 } };
+  const std::vector<double> h = { 0.125, 0.125, 10.0 };
+  auto disk = makeUnitDiskSource();
+  const CellMeasures cm = computeCellMeasures(*disk, y, h);
+  EXPECT_EQ(cm.mass[2], 0.0);
+  EXPECT_NEAR(cm.mass[0], Pi / 2, 1e-15);
+  EXPECT_NEAR(cm.mass[1], Pi / 2, 1e-15);
+  EXPECT_NEAR(cm.centroid[1].x, 4.0 / (3.0 * Pi), 1e-15);
+}
