@@ -31,7 +31,9 @@ public:
   // -1 stands for the infinite vertex around hull Diracs).
   const int* neighborsBegin(int i) const { return Adjacency.data() + Offsets[i]; }
   const int* neighborsEnd(int i) const { return Adjacency.data() + Offsets[i + 1]; }
-  // Cell of Dirac i intersected with the box [lo, hi] (which must contain the domain). Thread-safe.
+  // Cell of Dirac i as a convex polygon (empty when hidden). Its parts outside the box [lo, hi],
+  // which must contain the domain, are replaced by edges labelled -1 that stay outside the box.
+  // Thread-safe.
   void cell(int i, Vec2 lo, Vec2 hi, PowerCell& out) const;
   // Finite faces of the regular (weighted Delaunay) triangulation, counter-clockwise.
   const std::vector<Triangle>& triangles() const { return Triangles; }
