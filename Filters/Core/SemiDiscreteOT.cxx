@@ -354,11 +354,21 @@ std::string validateDiracs(const std::vector<Vec2>& diracs, const std::vector<do
 
 namespace
 {
-// Voronoi start; when a cell misses the domain (Diracs outside it), the Voronoi diagram of the
-// Diracs mapped into the domain by a similarity z = s y + t instead: its cells are the power
-// cells of y with h_i = |z_i|^2 / (2 s).
-void voronoiStart(const SourceMeasure& source, const std::vector<Vec2>& diracs,
-  std::vector<Height>& h, PowerDiagram& diagram, Evaluation& ev, OTResult& result)
+// Start heights: the Voronoi diagram of the Diracs when it already solves the problem, or when
+// every cell meets the domain and the masses differ by at most MildContrast. Otherwise the
+// Voronoi diagram of the Diracs mapped by a similarity z = c + s (y - c) that makes them fill
+// 90% of a disk inside the domain: its cells are the power cells of y with
+// h_i = |z_i|^2 / (2 s), since <x, y_i> - h_i = (<x, z_i> - |z_i|^2 / 2) / s + terms common to
+// all i. Besides giving a cell to Diracs outside the domain, this keeps the Diracs next to the
+// boundary from starting as thin caps, which full Newton steps push out of the domain when
+// their masses must shrink a lot. Measured, Newton iterations from the Voronoi / the shrunk
+// start, 1e4 random Diracs in the disk: contrast 10: 6 / 8; 100: 16 / 12; 1e3: 72 / 18;
+// 1e4: 84 / 28 (3e4 Diracs: 119 / 30).
+constexpr double MildContrast = 30.0;
+
+void startHeights(const SourceMeasure& source, const std::vector<Vec2>& diracs,
+  const std::vector<double>& nu, double tolerance, std::vector<Height>& h, PowerDiagram& diagram,
+  Evaluation& ev, OTResult& result)
 {
   const size_t n = diracs.size();
   h.resize(n);
@@ -367,25 +377,24 @@ void voronoiStart(const SourceMeasure& source, const std::vector<Vec2>& diracs,
     h[i] = 0.5L * dot(diracs[i], diracs[i]);
   }
   evaluate(source, diracs, h, diagram, ev, result);
-  if (ev.minMass > 0.0)
+  const auto [lightest, heaviest] = std::minmax_element(nu.begin(), nu.end());
+  if (ev.minMass > 0.0 &&
+    (relativeError(ev.cellMass, nu) <= tolerance || *heaviest <= MildContrast * *lightest))
   {
     return;
   }
-  Vec2 lo = diracs[0], hi = diracs[0];
-  for (const Vec2& y : diracs)
-  {
-    lo = { std::min(lo.x, y.x), std::min(lo.y, y.y) };
-    hi = { std::max(hi.x, y.x), std::max(hi.y, y.y) };
-  }
-  const Vec2 mid = 0.5 * (lo + hi);
-  const double radius = std::max(0.5 * norm(hi - lo), 1e-300);
   Vec2 center;
   double inner;
   source.innerDisk(center, inner);
-  const double s = 0.9 * inner / radius;
+  double reach = 0.0;
+  for (const Vec2& y : diracs)
+  {
+    reach = std::max(reach, norm(y - center));
+  }
+  const double s = reach > 0.0 ? 0.9 * inner / reach : 1.0;
   for (size_t i = 0; i < n; ++i)
   {
-    const Vec2 z = center + s * (diracs[i] - mid);
+    const Vec2 z = center + s * (diracs[i] - center);
     h[i] = static_cast<Height>(dot(z, z)) / (2.0L * s);
   }
   evaluate(source, diracs, h, diagram, ev, result);
@@ -525,7 +534,7 @@ OTResult solveSemiDiscreteOT(const SourceMeasure& source, const std::vector<Vec2
   std::vector<Height> h;
   PowerDiagram diagram;
   Evaluation ev;
-  voronoiStart(source, diracs, h, diagram, ev, result);
+  startHeights(source, diracs, nu, options.tolerance, h, diagram, ev, result);
   if (ev.minMass <= 0.0)
   {
     std::ostringstream msg;
