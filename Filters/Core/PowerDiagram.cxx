@@ -75,11 +75,6 @@ void PowerDiagram::build(const std::vector<Vec2>& diracs, const std::vector<Heig
     }
     // Faces around each vertex, counter-clockwise, and the neighbour across the edge that
     // follows each face (-1: the edge to the infinite vertex).
-    std::vector<std::pair<int, int>> ring;
-    for (int i = 0; i < n; ++i)
-    {
-      Offsets[i + 1] = Offsets[i];
-    }
     std::vector<int> ringStart(n, -1), ringSize(n, 0);
     for (auto v = rt.finite_vertices_begin(); v != rt.finite_vertices_end(); ++v)
     {
