@@ -1,12 +1,7 @@
 #include "SemiDiscreteOT.h"
 
 #include "PowerDiagram.h"
-
-#include <Eigen/Sparse>
-#include <Eigen/SparseCholesky>
-#ifdef OTPARAM_HAVE_CHOLMOD
-#include <Eigen/CholmodSupport>
-#endif
+#include "SparseCholesky.h"
 
 #include <algorithm>
 #include <chrono>
@@ -174,7 +169,7 @@ public:
     // factorization preconditions conjugate gradients; a new factorization (~20 s at 1e6
     // Diracs) is made only when that does not converge quickly.
     Eigen::VectorXd x;
-    bool ok = HaveFactor && Factor.size == m && preconditionedCG(L, rhs, x);
+    bool ok = HaveFactor && Factor.size() == m && preconditionedCG(L, rhs, x);
     if (!ok)
     {
       ok = Factor.compute(L);
@@ -203,46 +198,6 @@ public:
 
 private:
   using SparseMatrix = Eigen::SparseMatrix<double>;
-
-  // Sparse Cholesky: Eigen's simplicial LDL^T, or CHOLMOD's supernodal LL^T for large systems.
-  struct Factorization
-  {
-    static constexpr int CholmodThreshold = 200000;
-    int size = -1;
-    Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower> ldlt;
-#ifdef OTPARAM_HAVE_CHOLMOD
-    std::unique_ptr<Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower>> cholmod;
-#endif
-    bool compute(const SparseMatrix& L)
-    {
-      size = static_cast<int>(L.rows());
-#ifdef OTPARAM_HAVE_CHOLMOD
-      if (size >= CholmodThreshold)
-      {
-        cholmod = std::make_unique<Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower>>();
-        // AMD only: by default CHOLMOD also tries METIS when AMD's fill looks high, which on
-        // these planar graphs costs more time than it saves.
-        cholmod->cholmod().nmethods = 1;
-        cholmod->cholmod().method[0].ordering = CHOLMOD_AMD;
-        cholmod->compute(L);
-        return cholmod->info() == Eigen::Success;
-      }
-      cholmod.reset();
-#endif
-      ldlt.compute(L);
-      return ldlt.info() == Eigen::Success;
-    }
-    Eigen::VectorXd solve(const Eigen::VectorXd& b) const
-    {
-#ifdef OTPARAM_HAVE_CHOLMOD
-      if (cholmod)
-      {
-        return cholmod->solve(b);
-      }
-#endif
-      return ldlt.solve(b);
-    }
-  };
 
   bool preconditionedCG(const SparseMatrix& L, const Eigen::VectorXd& b, Eigen::VectorXd& x) const
   {
@@ -280,7 +235,7 @@ private:
   static constexpr double CGTolerance = 1e-11;
   int Pinned;
   bool HaveFactor = false;
-  Factorization Factor;
+  SparseCholesky Factor;
 };
 
 } // namespace

@@ -1,0 +1,49 @@
+// The conformal (Riemann) map of a disk-like triangle surface onto the unit disk, with the
+// boundary exactly on the unit circle (method.md step 1).
+#ifndef OTPARAM_CONFORMALDISKMAP_H
+#define OTPARAM_CONFORMALDISKMAP_H
+
+#include "SurfaceMesh.h"
+
+#include <functional>
+
+namespace otparam
+{
+
+struct ConformalDiskMapOptions
+{
+  int centerVertex = -1; // interior vertex sent to the origin; -1: the farthest from the boundary
+  int alignVertex = -1;  // boundary vertex sent to (1, 0); -1: the boundary vertex of lowest id
+  // Stop when no boundary angle moves by more than this (radians) in one iteration.
+  double tolerance = 1e-7;
+  int maximumIterations = 100;
+  // Called with the fraction done; returning false aborts.
+  std::function<bool(double)> progress;
+};
+
+struct ConformalDiskMapResult
+{
+  std::string error; // empty on success
+  bool aborted = false;
+  std::vector<Vec2> uv; // per mesh point; boundary points on the unit circle
+  int centerVertex = -1;
+  int alignVertex = -1;
+  int iterations = 0;            // boundary-angle iterations after the first flattening
+  double lastAngleUpdate = 0.0;  // radians
+  double conformalEnergy = 0.0;  // Dirichlet energy minus image area (0 = conformal)
+  int clippedEars = 0;
+  double secondsFactorization = 0.0;
+  double secondsIterations = 0.0;
+};
+
+// `boundaryLoop` is the mesh's single boundary loop in the triangles' orientation, as
+// checkDiskTopology returns it (the mesh must pass that check).
+ConformalDiskMapResult computeConformalDiskMap(const SurfaceMesh& mesh,
+  const std::vector<int>& boundaryLoop, const ConformalDiskMapOptions& options = {});
+
+// Interior vertex with the largest surface (edge-path) distance to the boundary.
+int farthestFromBoundary(const SurfaceMesh& mesh, const std::vector<int>& boundaryLoop);
+
+} // namespace otparam
+
+#endif
