@@ -20,6 +20,7 @@
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkStringArray.h"
 
+#include "OTParamAdapterUtilities.h"
 #include "SemiDiscreteOT.h"
 #include "SourceMeasure.h"
 
@@ -36,51 +37,9 @@ vtkStandardNewMacro(vtkSemiDiscreteOTSolver);
 
 namespace
 {
+using namespace otparam_vtk;
 constexpr int NumberOfOutputs = 5;
 
-// "3, 17, 42" or "3, 17, ... (25 in total)": enough to find the culprits without flooding the log.
-std::string FormatIds(const std::vector<vtkIdType>& ids)
-{
-  constexpr std::size_t shown = 10;
-  std::ostringstream out;
-  for (std::size_t k = 0; k < ids.size() && k < shown; ++k)
-  {
-    out << (k ? ", " : "") << ids[k];
-  }
-  if (ids.size() > shown)
-  {
-    out << ", ... (" << ids.size() << " in total)";
-  }
-  return out.str();
-}
-
-vtkSmartPointer<vtkDoubleArray> MakeDoubleArray(
-  const char* name, const std::vector<double>& values)
-{
-  auto array = vtkSmartPointer<vtkDoubleArray>::New();
-  array->SetName(name);
-  array->SetNumberOfTuples(static_cast<vtkIdType>(values.size()));
-  std::copy(values.begin(), values.end(), array->GetPointer(0));
-  return array;
-}
-
-vtkSmartPointer<vtkDoubleArray> MakeScalar(const char* name, double value)
-{
-  return MakeDoubleArray(name, std::vector<double>{ value });
-}
-
-vtkSmartPointer<vtkIntArray> MakeIntScalar(const char* name, int value)
-{
-  auto array = vtkSmartPointer<vtkIntArray>::New();
-  array->SetName(name);
-  array->InsertNextValue(value);
-  return array;
-}
-
-double Seconds(std::chrono::steady_clock::time_point start)
-{
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 } // namespace
 
 //------------------------------------------------------------------------------
