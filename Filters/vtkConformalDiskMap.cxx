@@ -83,7 +83,8 @@ int vtkConformalDiskMap::RequestData(
 
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0], 0);
   const vtkIdType numberOfPoints = (input && input->GetPoints()) ? input->GetNumberOfPoints() : 0;
-  if (!input || numberOfPoints == 0 || input->GetNumberOfPolys() == 0)
+  // Any cell counts here: vertices, lines and strips get the "triangles only" message below.
+  if (!input || numberOfPoints == 0 || input->GetNumberOfCells() == 0)
   {
     vtkErrorMacro("The input surface is empty: it needs points and triangles.");
     return 0;
@@ -140,12 +141,6 @@ int vtkConformalDiskMap::RequestData(
   {
     vtkErrorMacro("The input is not a disk-like triangle surface: " << error << ".");
     return 0;
-  }
-  if (compacted.unreferencedPoints > 0)
-  {
-    vtkWarningMacro(<< compacted.unreferencedPoints
-                    << " input point(s) belong to no triangle and are left out of the output; "
-                       "the point array vtkOriginalPointIds gives each output point's input id.");
   }
 
   // Input point ids -> mesh ids for the two properties.
@@ -308,6 +303,13 @@ int vtkConformalDiskMap::RequestData(
   fd->AddArray(MakeScalar("SecondsFactorization", map.secondsFactorization));
   fd->AddArray(MakeScalar("SecondsIterations", map.secondsIterations));
   fd->AddArray(MakeScalar("SecondsTotal", Seconds(startTotal)));
+  // Only now: a run that fails must not warn about an output it does not make.
+  if (compacted.unreferencedPoints > 0)
+  {
+    vtkWarningMacro(<< compacted.unreferencedPoints
+                    << " input point(s) belong to no triangle and are left out of the output; "
+                       "the point array vtkOriginalPointIds gives each output point's input id.");
+  }
   if (figures.flippedTriangles > 0)
   {
     vtkWarningMacro(<< figures.flippedTriangles << " triangle(s) are flipped in the disk image.");

@@ -15,7 +15,7 @@ struct ConformalDiskMapOptions
   int centerVertex = -1; // interior vertex sent to the origin; -1: the farthest from the boundary
   int alignVertex = -1;  // boundary vertex sent to (1, 0); -1: the boundary vertex of lowest id
   // Stop when no boundary angle moves by more than this (radians) in one iteration.
-  double tolerance = 1e-7;
+  double tolerance = 1e-6;
   int maximumIterations = 100;
   // Called with the fraction done; returning false aborts.
   std::function<bool(double)> progress;

@@ -58,6 +58,16 @@ public:
 
   int size() const { return Size; }
 
+  // Eigen's solve keeps no state between calls; CHOLMOD's shares a workspace.
+  bool concurrentSolvesAreSafe() const
+  {
+#ifdef OTPARAM_HAVE_CHOLMOD
+    return !Cholmod;
+#else
+    return true;
+#endif
+  }
+
 private:
   int Size = -1;
   Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower> Ldlt;

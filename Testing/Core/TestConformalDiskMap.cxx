@@ -192,6 +192,11 @@ struct Reference
   double roundingOfTable = 0.0;
 };
 
+void PrintTo(const Reference& r, std::ostream* os)
+{
+  *os << r.mesh;
+}
+
 class SharedMeshes : public ::testing::TestWithParam<Reference>
 {
 };

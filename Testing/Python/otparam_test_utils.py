@@ -98,6 +98,20 @@ class MessageRecorder:
         return "\n".join(self.messages)
 
 
+def check_failed_run(name, errors, pipeline_errors, words):
+    """A bad-input run: exactly one error that mentions each of `words` (a tuple = any of
+    them), and RequestData reporting failure to the pipeline."""
+    text = errors.text()
+    lower = text.lower()
+    print(f"{name}: {text.strip().splitlines()[-1] if text else '(no error)'}", flush=True)
+    check(len(errors.messages) == 1, f"{name}: exactly one error ({len(errors.messages)})")
+    for word in words:
+        options = word if isinstance(word, tuple) else (word,)
+        check(any(option in lower for option in options), f"{name}: message mentions {options}")
+    check("returned failure" in pipeline_errors.text(),
+          f"{name}: RequestData reports failure to the pipeline")
+
+
 def field_value(data, name):
     array = data.GetFieldData().GetAbstractArray(name)
     if array is None:
@@ -137,3 +151,64 @@ def same(a, b):
     if isinstance(a, dict) and isinstance(b, dict):
         return a.keys() == b.keys() and all(same(a[k], b[k]) for k in a)
     return a == b
+
+
+def shared_data_dir():
+    """../shared/data beside the checkout (CMake passes OTPARAM_SHARED_DATA_DIR)."""
+    import os
+    here = os.path.dirname(os.path.abspath(__file__))
+    return os.environ.get("OTPARAM_SHARED_DATA_DIR",
+                          os.path.join(here, "..", "..", "..", "shared", "data"))
+
+
+def shared_mesh(name):
+    import os
+    return os.path.join(shared_data_dir(), "meshes", name)
+
+
+def read_mesh(path):
+    """A shared .off/.obj mesh as vtkPolyData (double points, triangles), numbering kept.
+    (VTK 9.2 has no OFF reader, and its OBJ reader may split vertices.)"""
+    import numpy as np
+    from vtkmodules.util.numpy_support import numpy_to_vtk, numpy_to_vtkIdTypeArray
+    points, faces = [], []
+    with open(path) as f:
+        if path.lower().endswith(".off"):
+            tokens = [t for line in f for t in line.split("#")[0].split()]
+            nv, nf = int(tokens[1]), int(tokens[2])
+            points = np.array(tokens[4:4 + 3 * nv], float).reshape(nv, 3)
+            p = 4 + 3 * nv
+            for _ in range(nf):
+                k = int(tokens[p])
+                faces.append([int(x) for x in tokens[p + 1:p + 1 + k]])
+                p += 1 + k
+        else:
+            for line in f:
+                if line.startswith("v "):
+                    points.append([float(x) for x in line.split()[1:4]])
+                elif line.startswith("f "):
+                    ids = [int(tok.split("/")[0]) for tok in line.split()[1:]]
+                    faces.append([i - 1 if i > 0 else len(points) + i for i in ids])
+            points = np.array(points, float)
+    triangles = np.array([[f[0], f[k], f[k + 1]] for f in faces for k in range(1, len(f) - 1)],
+                         dtype=np.int64)
+    vtk_points = vtkPoints()
+    vtk_points.SetData(numpy_to_vtk(np.ascontiguousarray(points), deep=True))
+    cells = np.hstack([np.full((len(triangles), 1), 3, np.int64), triangles]).ravel()
+    polys = vtkCellArray()
+    polys.SetCells(len(triangles), numpy_to_vtkIdTypeArray(cells, deep=True))
+    data = vtkPolyData()
+    data.SetPoints(vtk_points)
+    data.SetPolys(polys)
+    return data
+
+
+def param_metrics():
+    """The scorer that produced reference-figures.md (../shared/tools/param_metrics.py)."""
+    import importlib.util
+    import os
+    path = os.path.join(shared_data_dir(), "..", "tools", "param_metrics.py")
+    spec = importlib.util.spec_from_file_location("param_metrics", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
