@@ -53,7 +53,9 @@ public:
   ///@{
   /**
    * Input point id of an interior vertex sent to the disk's centre. -1 (default): the interior
-   * vertex farthest from the boundary (shortest path along edges).
+   * vertex nearest to the surface's area barycentre in the disk (the Moebius normalization
+   * that puts the centre of mass of the surface area at the origin), which balances the area
+   * distortion (a vertex "farthest from the boundary" would be a finger tip on a hand).
    */
   vtkSetMacro(CenterPointId, vtkIdType);
   vtkGetMacro(CenterPointId, vtkIdType);

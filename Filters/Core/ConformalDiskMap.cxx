@@ -432,57 +432,64 @@ std::complex<double> moebius(std::complex<double> z, std::complex<double> a)
 {
   return (z - a) / (1.0 - std::conj(a) * z);
 }
-} // namespace
 
-int farthestFromBoundary(const SurfaceMesh& mesh, const std::vector<int>& boundaryLoop)
+// The automatic centre: the Moebius normalization that puts the centre of mass of the surface
+// area (triangle centroids in the disk, weighted by surface area) at the origin, then the
+// interior vertex nearest to it. A vertex "farthest from the boundary" would be a finger tip
+// on a hand, leaving the palm squeezed against the circle; the area barycentre balances the
+// area distortion that the sampler and the OT solver face. Fixed-point iteration of the
+// Douady-Earle kind: compose with the Moebius map of the current barycentre until it is 0.
+int areaBarycentreVertex(const SurfaceMesh& mesh, const ClippedMesh& clipped,
+  const DiskFlattening& disk, const Eigen::MatrixXd& X)
 {
-  const size_t nv = mesh.points.size();
-  std::vector<std::vector<std::pair<int, double>>> neighbours(nv);
-  for (const auto& t : mesh.triangles)
+  std::vector<std::complex<double>> centroid;
+  std::vector<double> weight;
+  double total = 0.0;
+  for (size_t t = 0; t < mesh.triangles.size(); ++t)
   {
-    for (int k = 0; k < 3; ++k)
-    {
-      const int a = t[k], b = t[(k + 1) % 3];
-      const double l = edgeLength(mesh, a, b);
-      neighbours[a].emplace_back(b, l);
-      neighbours[b].emplace_back(a, l);
-    }
-  }
-  std::vector<double> distance(nv, std::numeric_limits<double>::infinity());
-  using Item = std::pair<double, int>;
-  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
-  for (int v : boundaryLoop)
-  {
-    distance[v] = 0.0;
-    queue.emplace(0.0, v);
-  }
-  while (!queue.empty())
-  {
-    const auto [d, v] = queue.top();
-    queue.pop();
-    if (d > distance[v])
+    if (!clipped.keepTriangle[t])
     {
       continue;
     }
-    for (const auto& [w, l] : neighbours[v])
+    std::complex<double> c = 0.0;
+    for (int v : mesh.triangles[t])
     {
-      if (d + l < distance[w])
-      {
-        distance[w] = d + l;
-        queue.emplace(d + l, w);
-      }
+      const int l = disk.Local[v];
+      c += std::complex<double>(X(l, 0), X(l, 1)) / 3.0;
     }
+    centroid.push_back(c);
+    weight.push_back(triangleArea(mesh, mesh.triangles[t]));
+    total += weight.back();
+  }
+  std::complex<double> a = 0.0;
+  for (int it = 0; it < 200; ++it)
+  {
+    std::complex<double> b = 0.0;
+    for (size_t t = 0; t < centroid.size(); ++t)
+    {
+      b += weight[t] / total * moebius(centroid[t], a);
+    }
+    if (std::abs(b) < 1e-12)
+    {
+      break;
+    }
+    // moebius(., b) o moebius(., a) sends moebius^-1(b, a) to 0: the new normalization point.
+    a = (b + a) / (1.0 + std::conj(a) * b);
   }
   int best = -1;
-  for (size_t v = 0; v < nv; ++v)
+  double bestDistance = std::numeric_limits<double>::infinity();
+  for (int l = disk.NB; l < disk.N; ++l)
   {
-    if (distance[v] > 0.0 && (best < 0 || distance[v] > distance[best]))
+    const double d = std::abs(moebius(std::complex<double>(X(l, 0), X(l, 1)), a));
+    if (d < bestDistance)
     {
-      best = static_cast<int>(v);
+      bestDistance = d;
+      best = l;
     }
   }
   return best;
 }
+} // namespace
 
 ConformalDiskMapResult computeConformalDiskMap(const SurfaceMesh& mesh,
   const std::vector<int>& boundaryLoop, const ConformalDiskMapOptions& options)
@@ -529,12 +536,10 @@ ConformalDiskMapResult computeConformalDiskMap(const SurfaceMesh& mesh,
     return !result.aborted;
   };
 
-  result.centerVertex =
-    options.centerVertex >= 0 ? options.centerVertex : farthestFromBoundary(mesh, boundaryLoop);
   result.alignVertex = options.alignVertex >= 0
     ? options.alignVertex
     : *std::min_element(boundaryLoop.begin(), boundaryLoop.end());
-  if (result.centerVertex < 0)
+  if (static_cast<size_t>(nv) == boundaryLoop.size())
   {
     result.error = "the surface has no interior vertex to send to the disk's centre";
     return result;
@@ -610,6 +615,9 @@ ConformalDiskMapResult computeConformalDiskMap(const SurfaceMesh& mesh,
   // Moebius normalization on the boundary angles, re-extending each time so the interior stays
   // harmonic; the discrete map is not exactly Moebius-equivariant, so a few rounds take the
   // centre's offset down (by ~500x per round, measured); the last bit is applied to the points.
+  result.centerVertex = options.centerVertex >= 0
+    ? options.centerVertex
+    : disk.Vertices[areaBarycentreVertex(mesh, clipped, disk, X)];
   const int center = disk.Local[result.centerVertex];
   for (int round = 0; round < 8; ++round)
   {

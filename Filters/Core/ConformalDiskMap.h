@@ -12,7 +12,9 @@ namespace otparam
 
 struct ConformalDiskMapOptions
 {
-  int centerVertex = -1; // interior vertex sent to the origin; -1: the farthest from the boundary
+  // Interior vertex sent to the origin; -1: the interior vertex nearest to the centre of mass of
+  // the surface area once that centre of mass is moved to the origin by a Moebius map.
+  int centerVertex = -1;
   int alignVertex = -1;  // boundary vertex sent to (1, 0); -1: the boundary vertex of lowest id
   // Stop when no boundary angle moves by more than this (radians) in one iteration.
   double tolerance = 1e-6;
@@ -40,9 +42,6 @@ struct ConformalDiskMapResult
 // checkDiskTopology returns it (the mesh must pass that check).
 ConformalDiskMapResult computeConformalDiskMap(const SurfaceMesh& mesh,
   const std::vector<int>& boundaryLoop, const ConformalDiskMapOptions& options = {});
-
-// Interior vertex with the largest surface (edge-path) distance to the boundary.
-int farthestFromBoundary(const SurfaceMesh& mesh, const std::vector<int>& boundaryLoop);
 
 } // namespace otparam
 

@@ -1,6 +1,7 @@
-"""Loads OTParam.so into ParaView and runs Semi-Discrete OT Solver on Diracs read from a .vtp.
+"""Loads OTParam.so into ParaView and runs its filters: Semi-Discrete OT Solver on Diracs read
+from a .vtp, Conformal Disk Map on a triangulated ParaView Plane.
 
-Usage: pvpython|pvbatch TestPluginSemiDiscreteOTSolver.py <OTParam.so> <work dir>
+Usage: pvpython|pvbatch TestPlugin.py <OTParam.so> <work dir>
 In the GUI (paraview --script=...), the same arguments come from the environment variables
 OTPARAM_PLUGIN and OTPARAM_TEST_DIR; with OTPARAM_SCREENSHOT=1 it also renders the power
 diagram. Writes <work dir>/PASSED when every check passed.
@@ -101,6 +102,33 @@ limited = servermanager.Fetch(solver)
 check(limited.GetFieldData().GetArray("Converged").GetValue(0) == 0,
       "MaximumNumberOfIterations = 1: Converged == 0")
 solver.MaximumNumberOfIterations = 200
+
+# ---- Conformal Disk Map on ParaView's own Plane source, triangulated (a square is a disk).
+check("ConformalDiskMap" in globals(), "LoadPlugin defines ConformalDiskMap")
+plane = Triangulate(Input=Plane(XResolution=12, YResolution=12))
+conformal = ConformalDiskMap(Input=plane)
+check(conformal.SMProxy.GetXMLLabel() == "Conformal Disk Map", "label 'Conformal Disk Map'")
+hints = conformal.SMProxy.GetHints()
+menu = hints.FindNestedElementByName("ShowInMenu") if hints else None
+check(menu is not None and menu.GetAttribute("category") == "Optimal Transport",
+      "Conformal Disk Map is in the menu category 'Optimal Transport'")
+check(conformal.CenterPointId == -1 and conformal.AlignPointId == -1,
+      "CenterPointId and AlignPointId default to -1")
+conformal.UpdatePipeline()
+disk = servermanager.Fetch(conformal)
+fd = disk.GetFieldData()
+check(disk.GetNumberOfPoints() == 13 * 13, "every plane point in the disk image")
+check(fd.GetArray("FlippedTriangles") is not None and fd.GetArray("FlippedTriangles").GetValue(0) == 0,
+      "no flipped triangle")
+check(fd.GetArray("MaximumBoundaryRadiusError").GetValue(0) <= 1e-12, "boundary on the circle")
+check(disk.GetPointData().GetArray("AreaDensity") is not None
+      and disk.GetCellData().GetArray("AreaDensity") is not None, "AreaDensity per point and cell")
+check(disk.GetPointData().GetTCoords() is not None, "texture coordinates")
+conformal.CenterPointId = 20  # an interior point of the 13 x 13 grid
+conformal.UpdatePipeline()
+moved = servermanager.Fetch(conformal)
+x, y, _ = moved.GetPoint(20)
+check(math.hypot(x, y) < 1e-14, f"CenterPointId = 20 goes to the origin ({x}, {y})")
 
 if os.environ.get("OTPARAM_SCREENSHOT") == "1":
     # The GUI only renders views that sit in a layout: use (or create) the active one.

@@ -1,0 +1,301 @@
+#!/usr/bin/python3
+"""Conformal disk map of a surface: vtkConformalDiskMap, its output (.vtp) and a picture.
+
+    conformal_map_demo.py [OUTPUT_DIR] [--mesh FILE.obj|.off|.vtp] [--size PIXELS]
+
+Without --mesh the surface is a built-in one (a disk-like relief with three bumps, generated
+here). Writes OUTPUT_DIR/conformal_disk_map.vtp (the disk image with every array) and
+OUTPUT_DIR/conformal_disk_map.png: left, the 3D surface with a checkerboard texture through the
+conformal coordinates (conformal: the squares stay square); right, the disk image coloured by
+log10 of the area distortion AreaDensity.
+
+Rendering needs an X server (Debian's VTK has no EGL/OSMesa): without DISPLAY, the script runs
+itself again under `xvfb-run -a`.
+"""
+
+import argparse
+import math
+import os
+import shutil
+import sys
+
+from vtkmodules.vtkCommonCore import vtkDoubleArray, vtkPoints, vtkUnsignedCharArray
+from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkImageData, vtkPolyData
+
+
+def make_default_surface(rings=40):
+    """A disk-like surface generated here: concentric rings of 6k points over the unit disk,
+    lifted by three Gaussian bumps (a nose and two cheeks, roughly), so that the conformal map
+    has a visibly non-uniform area distortion."""
+    points = vtkPoints()
+    points.SetDataTypeToDouble()
+    polys = vtkCellArray()
+
+    def height(x, y):
+        bumps = ((0.0, -0.1, 0.5, 0.28), (-0.45, 0.3, 0.3, 0.25), (0.45, 0.3, 0.3, 0.25))
+        return sum(a * math.exp(-((x - cx) ** 2 + (y - cy) ** 2) / (s * s))
+                   for cx, cy, a, s in bumps)
+
+    points.InsertNextPoint(0.0, 0.0, height(0.0, 0.0))
+    inner, inner_start = [0], 0.0
+    for k in range(1, rings + 1):
+        count, radius = 6 * k, k / rings
+        start = (k % 2) * math.pi / count  # staggered rings give better triangles
+        outer = []
+        for j in range(count):
+            angle = start + 2.0 * math.pi * j / count
+            x, y = radius * math.cos(angle), radius * math.sin(angle)
+            outer.append(points.InsertNextPoint(x, y, height(x, y)))
+        # Zip the rings together in order of angle (counter-clockwise seen from +z).
+        ni = len(inner)
+        i = o = 0
+        while (ni > 1 and i < ni) or o < count:
+            along_outer = o < count and (ni == 1 or i == ni or
+                                         start + 2.0 * math.pi * (o + 1) / count
+                                         < inner_start + 2.0 * math.pi * (i + 1) / ni)
+            if along_outer:
+                polys.InsertNextCell(3, (inner[i % ni], outer[o], outer[(o + 1) % count]))
+                o += 1
+            else:
+                polys.InsertNextCell(3, (inner[i % ni], outer[o % count], inner[(i + 1) % ni]))
+                i += 1
+        inner, inner_start = outer, start
+    surface = vtkPolyData()
+    surface.SetPoints(points)
+    surface.SetPolys(polys)
+    return surface
+
+
+def read_surface(path):
+    """A triangle surface from .vtp, .obj or .off (VTK 9.2 has no OFF reader)."""
+    if path.lower().endswith(".vtp"):
+        from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
+        reader = vtkXMLPolyDataReader()
+        reader.SetFileName(path)
+        reader.Update()
+        return reader.GetOutput()
+    points, faces = vtkPoints(), vtkCellArray()
+    points.SetDataTypeToDouble()
+    with open(path) as f:
+        if path.lower().endswith(".off"):
+            tokens = [t for line in f for t in line.split("#")[0].split()]
+            nv, nf = int(tokens[1]), int(tokens[2])
+            for v in range(nv):
+                points.InsertNextPoint(*(float(t) for t in tokens[4 + 3 * v:7 + 3 * v]))
+            p = 4 + 3 * nv
+            for _ in range(nf):
+                k = int(tokens[p])
+                faces.InsertNextCell(k, [int(t) for t in tokens[p + 1:p + 1 + k]])
+                p += 1 + k
+        else:
+            for line in f:
+                if line.startswith("v "):
+                    points.InsertNextPoint(*(float(t) for t in line.split()[1:4]))
+                elif line.startswith("f "):
+                    ids = [int(t.split("/")[0]) for t in line.split()[1:]]
+                    n = points.GetNumberOfPoints()
+                    faces.InsertNextCell(len(ids), [i - 1 if i > 0 else n + i for i in ids])
+    surface = vtkPolyData()
+    surface.SetPoints(points)
+    surface.SetPolys(faces)
+    return surface
+
+
+def checkerboard(size=512, checks=16):
+    """An RGB checkerboard image for texturing (two blues, so it reads on any shading)."""
+    image = vtkImageData()
+    image.SetDimensions(size, size, 1)
+    colors = vtkUnsignedCharArray()
+    colors.SetNumberOfComponents(3)
+    colors.SetNumberOfTuples(size * size)
+    cell = size // checks
+    for j in range(size):
+        for i in range(size):
+            dark = ((i // cell) + (j // cell)) % 2
+            colors.SetTuple3(j * size + i, *((30, 60, 140) if dark else (235, 235, 245)))
+    image.GetPointData().SetScalars(colors)
+    return image
+
+
+def render(surface, disk, size=1200):
+    """The picture: textured 3D surface (left) and the disk coloured by log10 AreaDensity
+    (right). Returns the vtkRenderWindow (rendered, deterministic: fixed size and cameras, no
+    multisampling)."""
+    from vtkmodules.vtkFiltersCore import vtkPolyDataNormals
+    from vtkmodules.vtkRenderingAnnotation import vtkScalarBarActor
+    from vtkmodules.vtkRenderingCore import (vtkActor, vtkColorTransferFunction, vtkPolyDataMapper,
+                                             vtkRenderer, vtkRenderWindow, vtkTexture)
+    import vtkmodules.vtkRenderingOpenGL2  # noqa: F401  (the OpenGL backend)
+
+    # Left: the surface with checkerboard texture coordinates (u, v) mapped to [0, 1]^2.
+    textured = vtkPolyData()
+    textured.ShallowCopy(surface)
+    tcoords = vtkDoubleArray()
+    tcoords.SetName("Checkerboard")
+    tcoords.SetNumberOfComponents(2)
+    uv = disk.GetPointData().GetTCoords()
+    for i in range(uv.GetNumberOfTuples()):
+        u, v = uv.GetTuple2(i)
+        tcoords.InsertNextTuple2(0.5 * (u + 1.0), 0.5 * (v + 1.0))
+    textured.GetPointData().SetTCoords(tcoords)
+    normals = vtkPolyDataNormals()
+    normals.SetInputData(textured)
+    normals.SplittingOff()
+    texture = vtkTexture()
+    texture.SetInputData(checkerboard())
+    texture.InterpolateOff()
+    surface_mapper = vtkPolyDataMapper()
+    surface_mapper.SetInputConnection(normals.GetOutputPort())
+    surface_mapper.ScalarVisibilityOff()
+    surface_actor = vtkActor()
+    surface_actor.SetMapper(surface_mapper)
+    surface_actor.SetTexture(texture)
+    left = vtkRenderer()
+    left.SetViewport(0.0, 0.0, 0.5, 1.0)
+    left.SetBackground(1.0, 1.0, 1.0)
+    left.AddActor(surface_actor)
+
+    # Right: the disk coloured per triangle by log10 of the exact area ratio.
+    density = disk.GetCellData().GetArray("AreaDensity")
+    log_density = vtkDoubleArray()
+    log_density.SetName("log10 AreaDensity")
+    for t in range(density.GetNumberOfTuples()):
+        log_density.InsertNextValue(math.log10(density.GetValue(t)))
+    colored = vtkPolyData()
+    colored.SetPoints(disk.GetPoints())
+    colored.SetPolys(disk.GetPolys())
+    colored.GetCellData().SetScalars(log_density)
+    low, high = log_density.GetRange()
+    colors = vtkColorTransferFunction()  # a blue - white - red diverging map around 0
+    bound = max(abs(low), abs(high), 1e-3)
+    colors.AddRGBPoint(-bound, 0.23, 0.30, 0.75)
+    colors.AddRGBPoint(0.0, 0.87, 0.87, 0.87)
+    colors.AddRGBPoint(bound, 0.71, 0.02, 0.15)
+    disk_mapper = vtkPolyDataMapper()
+    disk_mapper.SetInputData(colored)
+    disk_mapper.SetScalarModeToUseCellData()
+    disk_mapper.SetLookupTable(colors)
+    disk_mapper.UseLookupTableScalarRangeOn()
+    disk_actor = vtkActor()
+    disk_actor.SetMapper(disk_mapper)
+    bar = vtkScalarBarActor()
+    bar.SetLookupTable(colors)
+    bar.SetTitle("log10 AreaDensity")
+    bar.SetNumberOfLabels(5)
+    bar.SetPosition(0.86, 0.1)
+    bar.SetWidth(0.12)
+    bar.SetHeight(0.8)
+    for prop in (bar.GetTitleTextProperty(), bar.GetLabelTextProperty()):
+        prop.SetColor(0.1, 0.1, 0.1)
+        prop.ShadowOff()
+        prop.ItalicOff()
+    right = vtkRenderer()
+    right.SetViewport(0.5, 0.0, 1.0, 1.0)
+    right.SetBackground(1.0, 1.0, 1.0)
+    right.AddActor(disk_actor)
+    right.AddActor2D(bar)
+
+    window = vtkRenderWindow()
+    window.SetMultiSamples(0)
+    window.SetSize(size, size // 2)
+    window.AddRenderer(left)
+    window.AddRenderer(right)
+    window.SetOffScreenRendering(1)
+
+    # Cameras from the data alone: the surface seen along its mean normal, the disk from +z.
+    left.ResetCamera()
+    camera = left.GetActiveCamera()
+    nx = ny = nz = 0.0
+    normals.Update()
+    array = normals.GetOutput().GetPointData().GetNormals()
+    for i in range(array.GetNumberOfTuples()):
+        a, b, c = array.GetTuple3(i)
+        nx, ny, nz = nx + a, ny + b, nz + c
+    length = math.sqrt(nx * nx + ny * ny + nz * nz) or 1.0
+    fx, fy, fz = camera.GetFocalPoint()
+    distance = camera.GetDistance()
+    camera.SetPosition(fx + distance * nx / length, fy + distance * ny / length,
+                       fz + distance * nz / length)
+    camera.SetViewUp(*((0.0, 1.0, 0.0) if abs(ny) < 0.9 * length else (0.0, 0.0, 1.0)))
+    camera.OrthogonalizeViewUp()
+    camera.Elevation(-50.0)  # oblique, so that the relief shows
+    camera.OrthogonalizeViewUp()
+    left.ResetCamera()
+    camera.Zoom(1.25)
+    right.GetActiveCamera().SetPosition(0.15, 0.0, 5.0)
+    right.GetActiveCamera().SetFocalPoint(0.15, 0.0, 0.0)
+    right.GetActiveCamera().SetViewUp(0.0, 1.0, 0.0)
+    right.ResetCameraClippingRange()
+    right.GetActiveCamera().SetParallelProjection(1)
+    right.GetActiveCamera().SetParallelScale(1.15)
+    window.Render()
+    return window
+
+
+def save_png(window, path):
+    from vtkmodules.vtkIOImage import vtkPNGWriter
+    from vtkmodules.vtkRenderingCore import vtkWindowToImageFilter
+    grab = vtkWindowToImageFilter()
+    grab.SetInput(window)
+    grab.ReadFrontBufferOff()
+    grab.Update()
+    writer = vtkPNGWriter()
+    writer.SetFileName(path)
+    writer.SetInputConnection(grab.GetOutputPort())
+    writer.Write()
+
+
+def ensure_display(args):
+    """Re-runs this script under xvfb-run when there is no X display to render into."""
+    if args.no_picture or os.environ.get("DISPLAY") or os.environ.get("OTPARAM_UNDER_XVFB"):
+        return
+    xvfb = shutil.which("xvfb-run")
+    if xvfb is None:
+        sys.exit("No X display and no xvfb-run: install xvfb or pass --no-picture.")
+    os.environ["OTPARAM_UNDER_XVFB"] = "1"
+    os.execv(xvfb, [xvfb, "-a", "-s", "-screen 0 1600x1600x24", sys.executable] + sys.argv)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("output", nargs="?", default="otparam-output", help="output directory")
+    parser.add_argument("--mesh", help="surface file (.obj, .off, .vtp); default: built-in")
+    parser.add_argument("--size", type=int, default=1200, help="picture width in pixels")
+    parser.add_argument("--no-picture", action="store_true", help="skip the PNG")
+    args = parser.parse_args()
+    ensure_display(args)
+
+    from otparam import vtkConformalDiskMap
+    from vtkmodules.vtkIOXML import vtkXMLPolyDataWriter
+
+    surface = read_surface(args.mesh) if args.mesh else make_default_surface()
+    mapper = vtkConformalDiskMap()
+    mapper.SetInputData(surface)
+    mapper.Update()
+    disk = mapper.GetOutput()
+    if disk.GetNumberOfPoints() == 0:
+        sys.exit("the conformal map failed (see the error above)")
+    field = disk.GetFieldData()
+    figures = {name: field.GetArray(name).GetTuple1(0) for name in (
+        "MeanAngleDistortion", "MaximumAngleDistortion", "MeanQuasiConformalDilatation",
+        "FlippedTriangles", "MaximumBoundaryRadiusError", "MaximumAbsLogAreaRatio",
+        "Iterations", "SecondsTotal")}
+    print(f"conformal disk map of {surface.GetNumberOfPoints()} points, "
+          f"{surface.GetNumberOfPolys()} triangles:")
+    for name, value in figures.items():
+        print(f"  {name:32s} {value:.6g}")
+
+    os.makedirs(args.output, exist_ok=True)
+    writer = vtkXMLPolyDataWriter()
+    writer.SetDataModeToBinary()  # Debian's ParaView VTK cannot read appended-mode files back
+    writer.SetFileName(os.path.join(args.output, "conformal_disk_map.vtp"))
+    writer.SetInputData(disk)
+    writer.Write()
+    if not args.no_picture:
+        path = os.path.join(args.output, "conformal_disk_map.png")
+        save_png(render(surface, disk, args.size), path)
+        print(f"wrote {path}")
+
+
+if __name__ == "__main__":
+    main()
