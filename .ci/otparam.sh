@@ -63,6 +63,9 @@ setup() {
 run_main() {
   local output=${1:-$repo/otparam-output}
   setup
+  log "main job: conformal disk map of the built-in surface -> $output"
+  PYTHONPATH="$build/lib/python3/dist-packages${PYTHONPATH:+:$PYTHONPATH}" \
+    "$python" "$repo/Examples/conformal_map_demo.py" "$output"
   log "main job: semi-discrete OT on the built-in example -> $output"
   PYTHONPATH="$build/lib/python3/dist-packages${PYTHONPATH:+:$PYTHONPATH}" \
     "$python" "$repo/Examples/ot_solver_demo.py" "$output"

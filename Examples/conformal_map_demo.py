@@ -16,9 +16,9 @@ itself again under `xvfb-run -a`.
 import argparse
 import math
 import os
-import shutil
 import sys
 
+from otparam_example_utils import ensure_display, save_png
 from vtkmodules.vtkCommonCore import vtkDoubleArray, vtkPoints, vtkUnsignedCharArray
 from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkImageData, vtkPolyData
 
@@ -117,7 +117,7 @@ def checkerboard(size=512, checks=16):
     return image
 
 
-def render(surface, disk, size=1200):
+def render(surface, disk, size=1200, elevation=-50.0):
     """The picture: textured 3D surface (left) and the disk coloured by log10 AreaDensity
     (right). Returns the vtkRenderWindow (rendered, deterministic: fixed size and cameras, no
     multisampling)."""
@@ -218,7 +218,7 @@ def render(surface, disk, size=1200):
                        fz + distance * nz / length)
     camera.SetViewUp(*((0.0, 1.0, 0.0) if abs(ny) < 0.9 * length else (0.0, 0.0, 1.0)))
     camera.OrthogonalizeViewUp()
-    camera.Elevation(-50.0)  # oblique, so that the relief shows
+    camera.Elevation(elevation)  # oblique, so that a relief shows
     camera.OrthogonalizeViewUp()
     left.ResetCamera()
     camera.Zoom(1.25)
@@ -232,35 +232,14 @@ def render(surface, disk, size=1200):
     return window
 
 
-def save_png(window, path):
-    from vtkmodules.vtkIOImage import vtkPNGWriter
-    from vtkmodules.vtkRenderingCore import vtkWindowToImageFilter
-    grab = vtkWindowToImageFilter()
-    grab.SetInput(window)
-    grab.ReadFrontBufferOff()
-    grab.Update()
-    writer = vtkPNGWriter()
-    writer.SetFileName(path)
-    writer.SetInputConnection(grab.GetOutputPort())
-    writer.Write()
-
-
-def ensure_display(args):
-    """Re-runs this script under xvfb-run when there is no X display to render into."""
-    if args.no_picture or os.environ.get("DISPLAY") or os.environ.get("OTPARAM_UNDER_XVFB"):
-        return
-    xvfb = shutil.which("xvfb-run")
-    if xvfb is None:
-        sys.exit("No X display and no xvfb-run: install xvfb or pass --no-picture.")
-    os.environ["OTPARAM_UNDER_XVFB"] = "1"
-    os.execv(xvfb, [xvfb, "-a", "-s", "-screen 0 1600x1600x24", sys.executable] + sys.argv)
-
-
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("output", nargs="?", default="otparam-output", help="output directory")
     parser.add_argument("--mesh", help="surface file (.obj, .off, .vtp); default: built-in")
     parser.add_argument("--size", type=int, default=1200, help="picture width in pixels")
+    parser.add_argument("--elevation", type=float,
+                        help="camera elevation from the mean normal, degrees (default: -50 for "
+                             "the built-in surface, 0 for --mesh)")
     parser.add_argument("--no-picture", action="store_true", help="skip the PNG")
     args = parser.parse_args()
     ensure_display(args)
@@ -293,7 +272,8 @@ def main():
     writer.Write()
     if not args.no_picture:
         path = os.path.join(args.output, "conformal_disk_map.png")
-        save_png(render(surface, disk, args.size), path)
+        elevation = args.elevation if args.elevation is not None else (0.0 if args.mesh else -50.0)
+        save_png(render(surface, disk, args.size, elevation), path)
         print(f"wrote {path}")
 
 

@@ -15,9 +15,10 @@ import argparse
 import math
 import os
 import random
-import shutil
 import sys
 import time
+
+from otparam_example_utils import ensure_display, save_png
 
 
 def parse_args():
@@ -32,17 +33,6 @@ def parse_args():
     parser.add_argument("--size", type=int, default=1200, help="picture size in pixels")
     parser.add_argument("--no-picture", action="store_true", help="skip the PNG")
     return parser.parse_args()
-
-
-def ensure_display(args):
-    """Re-runs this script under xvfb-run when there is no X display to render into."""
-    if args.no_picture or os.environ.get("DISPLAY") or os.environ.get("OTPARAM_UNDER_XVFB"):
-        return
-    xvfb = shutil.which("xvfb-run")
-    if xvfb is None:
-        sys.exit("No X display and no xvfb-run: install xvfb or pass --no-picture.")
-    os.environ["OTPARAM_UNDER_XVFB"] = "1"
-    os.execv(xvfb, [xvfb, "-a", "-s", "-screen 0 1600x1600x24", sys.executable] + sys.argv)
 
 
 def make_diracs(n, contrast, seed):
@@ -99,9 +89,7 @@ def write_outputs(solver, directory):
 def render_png(solver, path, size):
     import vtkmodules.vtkRenderingOpenGL2  # noqa: F401  (registers the OpenGL render window)
     from vtkmodules.vtkCommonCore import vtkLookupTable
-    from vtkmodules.vtkIOImage import vtkPNGWriter
-    from vtkmodules.vtkRenderingCore import (vtkActor, vtkPolyDataMapper, vtkRenderer,
-                                             vtkRenderWindow, vtkWindowToImageFilter)
+    from vtkmodules.vtkRenderingCore import vtkActor, vtkPolyDataMapper, vtkRenderer, vtkRenderWindow
 
     diagram = solver.GetOutput(1)
     triangulation = solver.GetOutput(0)
@@ -150,15 +138,7 @@ def render_png(solver, path, size):
     window.SetSize(size, size)
     window.AddRenderer(renderer)
     window.Render()
-
-    grab = vtkWindowToImageFilter()
-    grab.SetInput(window)
-    grab.ReadFrontBufferOff()
-    grab.Update()
-    writer = vtkPNGWriter()
-    writer.SetFileName(path)
-    writer.SetInputConnection(grab.GetOutputPort())
-    writer.Write()
+    save_png(window, path)
 
 
 def hsv_to_rgb(h, s, v):

@@ -73,7 +73,7 @@ public:
   ///@{
   /**
    * The iteration on the boundary angles stops when no angle moves by more than Tolerance
-   * radians. Must be positive. Default 1e-7.
+   * radians. Must be positive. Default 1e-6.
    */
   vtkSetMacro(Tolerance, double);
   vtkGetMacro(Tolerance, double);
@@ -98,7 +98,7 @@ protected:
 
   vtkIdType CenterPointId = -1;
   vtkIdType AlignPointId = -1;
-  double Tolerance = 1e-7;
+  double Tolerance = 1e-6;
   int MaximumNumberOfIterations = 100;
 
 private:
