@@ -573,7 +573,8 @@ std::unique_ptr<SourceMeasure> makeUnitDiskSource()
 }
 
 std::unique_ptr<SourceMeasure> makeTriangulatedSource(const std::vector<Vec2>& points,
-  const std::vector<Triangle>& triangles, const std::vector<double>& density, std::string& error)
+  const std::vector<Triangle>& triangles, const std::vector<double>& density, std::string& error,
+  bool allowZeroDensity)
 {
   error.clear();
   if (triangles.empty())
@@ -609,7 +610,7 @@ std::unique_ptr<SourceMeasure> makeTriangulatedSource(const std::vector<Vec2>& p
         return nullptr;
       }
       const double f = src->density[tri[k]];
-      if (!(std::isfinite(f) && f > 0.0))
+      if (!(std::isfinite(f) && (f > 0.0 || (allowZeroDensity && f == 0.0))))
       {
         std::ostringstream s;
         s << "source density at point " << tri[k] << " is " << f

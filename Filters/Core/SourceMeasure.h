@@ -53,9 +53,12 @@ std::unique_ptr<SourceMeasure> makeUnitDiskSource();
 
 // A planar triangulated convex domain. density: one value per point (piecewise linear), or empty
 // for density 1. Returns nullptr and sets error when the domain is empty, not convex, has
-// degenerate or inverted... triangles, or a density that is not finite and positive.
+// degenerate or inverted... triangles, or a density that is not finite and positive (or, with
+// allowZeroDensity, negative: the sampler integrates densities that vanish on parts of the
+// domain; an OT source must not).
 std::unique_ptr<SourceMeasure> makeTriangulatedSource(const std::vector<Vec2>& points,
-  const std::vector<Triangle>& triangles, const std::vector<double>& density, std::string& error);
+  const std::vector<Triangle>& triangles, const std::vector<double>& density, std::string& error,
+  bool allowZeroDensity = false);
 
 } // namespace otparam
 

@@ -1,5 +1,7 @@
 #include "SurfaceMesh.h"
 
+#include "IdList.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -10,22 +12,6 @@ namespace otparam
 {
 namespace
 {
-// Lists at most a few ids: messages must stay readable on meshes with thousands of problems.
-template <typename Ids>
-std::string idList(const Ids& ids)
-{
-  std::ostringstream out;
-  const size_t shown = std::min<size_t>(ids.size(), 8);
-  for (size_t i = 0; i < shown; ++i)
-  {
-    out << (i ? ", " : "") << ids[i];
-  }
-  if (ids.size() > shown)
-  {
-    out << ", ... (" << ids.size() << " in all)";
-  }
-  return out.str();
-}
 
 std::uint64_t edgeKey(int a, int b)
 {

@@ -3,6 +3,7 @@
 #include "ConformalDiskMap.h"
 #include "MeshFiles.h"
 #include "ParameterizationMetrics.h"
+#include "RingDisk.h"
 #include "SurfaceMesh.h"
 
 #include <gtest/gtest.h>
@@ -17,49 +18,19 @@ namespace
 {
 constexpr double Pi = 3.14159265358979323846;
 
-// Unit hemisphere z >= 0 from `rings` concentric rings of 6k points (k = 1..rings), spaced
-// evenly in polar angle; vertex 0 is the pole. Triangles counter-clockwise seen from +z.
+// Unit hemisphere z >= 0 from a ring disk, rings evenly spaced in polar angle; vertex 0 is the
+// pole.
 SurfaceMesh makeHemisphere(int rings)
 {
+  const RingDisk disk = makeRingDisk(rings);
   SurfaceMesh mesh;
-  mesh.points.push_back({ 0.0, 0.0, 1.0 });
-  std::vector<int> inner = { 0 };
-  double innerStart = 0.0;
-  for (int k = 1; k <= rings; ++k)
+  for (size_t v = 0; v < disk.t.size(); ++v)
   {
-    const int no = 6 * k;
-    const double polar = 0.5 * Pi * k / rings;
-    const double start = (k % 2) * Pi / no; // staggered rings give better triangles
-    std::vector<int> outer;
-    for (int j = 0; j < no; ++j)
-    {
-      const double az = start + 2.0 * Pi * j / no;
-      outer.push_back(static_cast<int>(mesh.points.size()));
-      mesh.points.push_back(
-        { std::sin(polar) * std::cos(az), std::sin(polar) * std::sin(az), std::cos(polar) });
-    }
-    // Zip the two rings together in order of azimuth.
-    const int ni = static_cast<int>(inner.size());
-    auto innerAngle = [&](int i) { return ni == 1 ? 1e300 : innerStart + 2.0 * Pi * i / ni; };
-    auto outerAngle = [&](int o) { return start + 2.0 * Pi * o / no; };
-    int i = 0, o = 0;
-    while (i < (ni == 1 ? 0 : ni) || o < no)
-    {
-      const bool alongOuter = o < no && (ni == 1 || i == ni || outerAngle(o + 1) < innerAngle(i + 1));
-      if (alongOuter)
-      {
-        mesh.triangles.push_back({ inner[i % ni], outer[o], outer[(o + 1) % no] });
-        ++o;
-      }
-      else
-      {
-        mesh.triangles.push_back({ inner[i % ni], outer[o % no], inner[(i + 1) % ni] });
-        ++i;
-      }
-    }
-    inner = outer;
-    innerStart = start;
+    const double polar = 0.5 * Pi * disk.t[v];
+    mesh.points.push_back({ std::sin(polar) * std::cos(disk.azimuth[v]),
+      std::sin(polar) * std::sin(disk.azimuth[v]), std::cos(polar) });
   }
+  mesh.triangles = disk.triangles;
   return mesh;
 }
 

@@ -1,0 +1,364 @@
+#include "DensityField.h"
+
+#include "IdList.h"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Convex_hull_traits_adapter_2.h>
+#include <CGAL/convex_hull_2.h>
+#include <CGAL/property_map.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+namespace otparam
+{
+namespace
+{
+
+// Barycentric coordinates of x in the counter-clockwise triangle abc.
+std::array<double, 3> barycentric(Vec2 x, Vec2 a, Vec2 b, Vec2 c)
+{
+  const double area = cross(b - a, c - a);
+  const double la = cross(b - x, c - x) / area;
+  const double lb = cross(c - x, a - x) / area;
+  return { la, lb, 1.0 - la - lb };
+}
+
+bool inside(Vec2 x, Vec2 a, Vec2 b, Vec2 c, double slack)
+{
+  const auto l = barycentric(x, a, b, c);
+  return l[0] >= -slack && l[1] >= -slack && l[2] >= -slack;
+}
+
+Vec2 closestOnSegment(Vec2 x, Vec2 a, Vec2 b)
+{
+  const Vec2 d = b - a;
+  const double t = std::clamp(dot(x - a, d) / dot(d, d), 0.0, 1.0);
+  return a + t * d;
+}
+} // namespace
+
+std::unique_ptr<DensityField> DensityField::create(const std::vector<Vec2>& points,
+  const std::vector<Triangle>& triangles, const std::vector<double>& perPoint,
+  const std::vector<double>& perTriangle, std::string& error)
+{
+  error.clear();
+  std::ostringstream msg;
+  if (points.empty() || triangles.empty())
+  {
+    error = "the domain has no triangles";
+    return nullptr;
+  }
+  if (perPoint.empty() == perTriangle.empty() ||
+    (!perPoint.empty() && perPoint.size() != points.size()) ||
+    (!perTriangle.empty() && perTriangle.size() != triangles.size()))
+  {
+    error = "the density needs exactly one value per point or one value per triangle";
+    return nullptr;
+  }
+  const std::vector<double>& values = perPoint.empty() ? perTriangle : perPoint;
+  const char* where = perPoint.empty() ? "triangle" : "point";
+  std::vector<size_t> bad;
+  bool anyPositive = false;
+  for (size_t i = 0; i < values.size(); ++i)
+  {
+    if (!std::isfinite(values[i]) || values[i] < 0.0)
+    {
+      bad.push_back(i);
+    }
+    anyPositive = anyPositive || values[i] > 0.0;
+  }
+  if (!bad.empty())
+  {
+    msg << "the density must be finite and non-negative, but it is " << values[bad.front()]
+        << " at " << where << " id(s) " << idList(bad);
+    error = msg.str();
+    return nullptr;
+  }
+  if (!anyPositive)
+  {
+    error = "the density is zero everywhere";
+    return nullptr;
+  }
+
+  std::unique_ptr<DensityField> field(new DensityField());
+  field->Points = points;
+  field->Triangles = triangles;
+  field->PerPoint = perPoint;
+  field->PerTriangle = perTriangle;
+  std::vector<char> used(points.size(), 0);
+  for (size_t t = 0; t < triangles.size(); ++t)
+  {
+    Triangle& tri = field->Triangles[t];
+    for (int v : tri)
+    {
+      if (v < 0 || static_cast<size_t>(v) >= points.size())
+      {
+        msg << "triangle " << t << " uses point id " << v << ", which does not exist";
+        error = msg.str();
+        return nullptr;
+      }
+      if (!std::isfinite(points[v].x) || !std::isfinite(points[v].y))
+      {
+        msg << "point " << v << " has a NaN or infinite coordinate";
+        error = msg.str();
+        return nullptr;
+      }
+      used[v] = 1;
+    }
+    double twice = cross(points[tri[1]] - points[tri[0]], points[tri[2]] - points[tri[0]]);
+    if (twice < 0.0)
+    {
+      std::swap(tri[1], tri[2]);
+      twice = -twice;
+    }
+    if (!(twice > 0.0))
+    {
+      msg << "triangle " << t << " has zero area";
+      error = msg.str();
+      return nullptr;
+    }
+    const double area = 0.5 * twice;
+    field->Area += area;
+    field->Integral += perPoint.empty()
+      ? area * perTriangle[t]
+      : area * (perPoint[tri[0]] + perPoint[tri[1]] + perPoint[tri[2]]) / 3.0;
+  }
+  if (!(field->Integral > 0.0))
+  {
+    error = "the density integrates to zero over the domain";
+    return nullptr;
+  }
+
+  using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+  using Traits = CGAL::Convex_hull_traits_adapter_2<K,
+    CGAL::Pointer_property_map<K::Point_2>::type>;
+  std::vector<K::Point_2> cgalPoints;
+  std::vector<std::size_t> usedIds, hull;
+  for (size_t i = 0; i < points.size(); ++i)
+  {
+    cgalPoints.emplace_back(points[i].x, points[i].y);
+    if (used[i])
+    {
+      usedIds.push_back(i);
+    }
+  }
+  CGAL::convex_hull_2(usedIds.begin(), usedIds.end(), std::back_inserter(hull),
+    Traits(CGAL::make_property_map(cgalPoints)));
+  double hullArea = 0.0;
+  for (size_t k = 0; k < hull.size(); ++k)
+  {
+    const Vec2 a = points[hull[k]], b = points[hull[(k + 1) % hull.size()]];
+    field->Hull.push_back(a);
+    field->HullIds.push_back(static_cast<int>(hull[k]));
+    hullArea += 0.5 * cross(a, b);
+  }
+  // Triangles that tile their convex hull exactly: anything else is a hole, a gap between
+  // components, a concavity or an overlap (target supports of that kind are a later feature).
+  if (std::abs(hullArea - field->Area) > 1e-9 * hullArea)
+  {
+    msg << "the triangles must tile a convex region without holes, gaps or overlaps (one "
+           "convex component), but their total area "
+        << field->Area << " differs from the area of their convex hull " << hullArea;
+    error = msg.str();
+    return nullptr;
+  }
+  field->UnitDisk = true;
+  for (const Vec2& p : field->Hull)
+  {
+    field->UnitDisk = field->UnitDisk && std::abs(norm(p) - 1.0) <= 1e-9;
+  }
+
+  // Buckets: about one triangle per bucket.
+  field->Lo = field->Hi = field->Hull.front();
+  for (const Vec2& p : field->Hull)
+  {
+    field->Lo = { std::min(field->Lo.x, p.x), std::min(field->Lo.y, p.y) };
+    field->Hi = { std::max(field->Hi.x, p.x), std::max(field->Hi.y, p.y) };
+  }
+  const double w = field->Hi.x - field->Lo.x, h = field->Hi.y - field->Lo.y;
+  const double side = std::sqrt(w * h / static_cast<double>(triangles.size()));
+  field->Nx = std::clamp(static_cast<int>(w / side), 1, 2048);
+  field->Ny = std::clamp(static_cast<int>(h / side), 1, 2048);
+  field->TriangleBuckets.assign(static_cast<size_t>(field->Nx) * field->Ny, {});
+  field->PointBuckets.assign(static_cast<size_t>(field->Nx) * field->Ny, {});
+  for (size_t t = 0; t < triangles.size(); ++t)
+  {
+    const Triangle& tri = field->Triangles[t];
+    Vec2 lo = points[tri[0]], hi = points[tri[0]];
+    for (int v : tri)
+    {
+      lo = { std::min(lo.x, points[v].x), std::min(lo.y, points[v].y) };
+      hi = { std::max(hi.x, points[v].x), std::max(hi.y, points[v].y) };
+    }
+    for (int b : field->bucketRange(lo, hi))
+    {
+      field->TriangleBuckets[b].push_back(static_cast<int>(t));
+    }
+  }
+  for (size_t i = 0; i < points.size(); ++i)
+  {
+    if (used[i])
+    {
+      field->PointBuckets[field->bucketRange(points[i], points[i]).front()].push_back(
+        static_cast<int>(i));
+    }
+  }
+  return field;
+}
+
+std::vector<int> DensityField::bucketRange(Vec2 lo, Vec2 hi) const
+{
+  const double cw = (Hi.x - Lo.x) / Nx, ch = (Hi.y - Lo.y) / Ny;
+  const int i0 = std::clamp(static_cast<int>(std::floor((lo.x - Lo.x) / cw)), 0, Nx - 1);
+  const int i1 = std::clamp(static_cast<int>(std::floor((hi.x - Lo.x) / cw)), 0, Nx - 1);
+  const int j0 = std::clamp(static_cast<int>(std::floor((lo.y - Lo.y) / ch)), 0, Ny - 1);
+  const int j1 = std::clamp(static_cast<int>(std::floor((hi.y - Lo.y) / ch)), 0, Ny - 1);
+  std::vector<int> buckets;
+  buckets.reserve(static_cast<size_t>(i1 - i0 + 1) * (j1 - j0 + 1));
+  for (int j = j0; j <= j1; ++j)
+  {
+    for (int i = i0; i <= i1; ++i)
+    {
+      buckets.push_back(j * Nx + i);
+    }
+  }
+  return buckets;
+}
+
+int DensityField::locate(Vec2 x) const
+{
+  for (double slack : { 1e-12, 1e-9 })
+  {
+    for (int t : TriangleBuckets[bucketRange(x, x).front()])
+    {
+      const Triangle& tri = Triangles[t];
+      if (inside(x, Points[tri[0]], Points[tri[1]], Points[tri[2]], slack))
+      {
+        return t;
+      }
+    }
+  }
+  return -1;
+}
+
+double DensityField::value(Vec2 x) const
+{
+  int t = locate(x);
+  if (t < 0)
+  {
+    // Outside (e.g. between the inscribed polygon and the circle): use the nearest boundary
+    // point of the domain.
+    Vec2 best = Hull.front();
+    double bestDistance = std::numeric_limits<double>::infinity();
+    for (size_t k = 0; k < Hull.size(); ++k)
+    {
+      const Vec2 p = closestOnSegment(x, Hull[k], Hull[(k + 1) % Hull.size()]);
+      const double d = norm(p - x);
+      if (d < bestDistance)
+      {
+        bestDistance = d;
+        best = p;
+      }
+    }
+    x = best;
+    t = locate(x);
+    if (t < 0)
+    {
+      return 0.0; // unreachable for a convex tiling; keeps the caller well-defined
+    }
+  }
+  if (!PerTriangle.empty())
+  {
+    return PerTriangle[t];
+  }
+  const Triangle& tri = Triangles[t];
+  const auto l = barycentric(x, Points[tri[0]], Points[tri[1]], Points[tri[2]]);
+  return std::max(
+    0.0, l[0] * PerPoint[tri[0]] + l[1] * PerPoint[tri[1]] + l[2] * PerPoint[tri[2]]);
+}
+
+double DensityField::maxOverTriangle(Vec2 a, Vec2 b, Vec2 c) const
+{
+  if (cross(b - a, c - a) < 0.0)
+  {
+    std::swap(b, c);
+  }
+  double largest = std::max({ value(a), value(b), value(c), value((1.0 / 3.0) * (a + b + c)) });
+  const Vec2 lo = { std::min({ a.x, b.x, c.x }), std::min({ a.y, b.y, c.y }) };
+  const Vec2 hi = { std::max({ a.x, b.x, c.x }), std::max({ a.y, b.y, c.y }) };
+  for (int bucket : bucketRange(lo, hi))
+  {
+    if (PerTriangle.empty())
+    {
+      for (int p : PointBuckets[bucket])
+      {
+        if (PerPoint[p] > largest && inside(Points[p], a, b, c, 0.0))
+        {
+          largest = PerPoint[p];
+        }
+      }
+    }
+    else
+    {
+      for (int t : TriangleBuckets[bucket])
+      {
+        const Triangle& tri = Triangles[t];
+        if (PerTriangle[t] > largest &&
+          inside((1.0 / 3.0) * (Points[tri[0]] + Points[tri[1]] + Points[tri[2]]), a, b, c, 0.0))
+        {
+          largest = PerTriangle[t];
+        }
+      }
+    }
+  }
+  return largest;
+}
+
+std::unique_ptr<SourceMeasure> DensityField::makeSource(std::string& error, double power) const
+{
+  // Every triangle gets its own three points (piecewise-constant densities need that; for
+  // piecewise-linear ones it costs memory only).
+  std::vector<Vec2> points;
+  std::vector<Triangle> triangles;
+  std::vector<double> density;
+  points.reserve(3 * Triangles.size());
+  density.reserve(3 * Triangles.size());
+  auto add = [&](Vec2 a, Vec2 b, Vec2 c, double fa, double fb, double fc) {
+    const int first = static_cast<int>(points.size());
+    points.insert(points.end(), { a, b, c });
+    density.insert(density.end(), { std::pow(fa, power), std::pow(fb, power), std::pow(fc, power) });
+    triangles.push_back({ first, first + 1, first + 2 });
+  };
+  std::vector<double> hullValue(Hull.size());
+  for (size_t t = 0; t < Triangles.size(); ++t)
+  {
+    const Triangle& tri = Triangles[t];
+    if (PerTriangle.empty())
+    {
+      add(Points[tri[0]], Points[tri[1]], Points[tri[2]], PerPoint[tri[0]], PerPoint[tri[1]],
+        PerPoint[tri[2]]);
+    }
+    else
+    {
+      add(Points[tri[0]], Points[tri[1]], Points[tri[2]], PerTriangle[t], PerTriangle[t],
+        PerTriangle[t]);
+    }
+  }
+  if (UnitDisk)
+  {
+    for (size_t k = 0; k < Hull.size(); ++k)
+    {
+      const size_t next = (k + 1) % Hull.size();
+      const Vec2 a = Hull[k], b = Hull[next];
+      const double fa = value(a), fb = value(b);
+      const Vec2 apex = (1.0 / (1.0 + dot(a, b))) * (a + b); // where the tangents meet
+      add(a, apex, b, fa, 0.5 * (fa + fb), fb);
+    }
+  }
+  return makeTriangulatedSource(points, triangles, density, error, true);
+}
+
+} // namespace otparam

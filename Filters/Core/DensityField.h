@@ -1,0 +1,73 @@
+// A density on a planar triangulated domain: piecewise linear (one value per point) or
+// piecewise constant (one value per triangle), with point queries, the largest value over a
+// triangle, and the domain's shape (the unit disk, or a convex polygon).
+#ifndef OTPARAM_DENSITYFIELD_H
+#define OTPARAM_DENSITYFIELD_H
+
+#include "OTGeometry.h"
+#include "SourceMeasure.h"
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace otparam
+{
+
+class DensityField
+{
+public:
+  // perPoint: one value per point (piecewise linear), or perTriangle: one per triangle
+  // (piecewise constant); exactly one of the two is non-empty. Values must be finite and >= 0,
+  // not all zero. The triangles must tile a convex region without overlaps. Returns nullptr and
+  // sets error otherwise (the message names the offending ids).
+  static std::unique_ptr<DensityField> create(const std::vector<Vec2>& points,
+    const std::vector<Triangle>& triangles, const std::vector<double>& perPoint,
+    const std::vector<double>& perTriangle, std::string& error);
+
+  // Density at x (x outside the domain: the value at the nearest point of the domain).
+  double value(Vec2 x) const;
+  // Largest density over the triangle abc: at its corners, its centroid and every input point
+  // inside it (a piecewise-linear density peaks at input points, which a coarse triangle's
+  // corners and centre would miss).
+  double maxOverTriangle(Vec2 a, Vec2 b, Vec2 c) const;
+  double integral() const { return Integral; }
+  double area() const { return Area; }
+
+  // The domain's boundary, counter-clockwise: the input's convex hull corners.
+  const std::vector<Vec2>& boundary() const { return Hull; }
+  // True when every boundary point of the input lies on the unit circle (to 1e-9): the domain
+  // is then treated as the unit disk (boundary samples on the circle, source mass pi).
+  bool isUnitDisk() const { return UnitDisk; }
+
+  const std::vector<Vec2>& points() const { return Points; }
+  const std::vector<Triangle>& triangles() const { return Triangles; }
+
+  // The density raised to `power` as a source measure (exact integrals over cells clipped to the
+  // domain for power 1; the power-th power of the values interpolated the same way otherwise).
+  // For the unit disk the domain is the inscribed polygon plus a cap triangle on every boundary
+  // edge (tangents' intersection as apex), so that a sample on the circle always has a cell of
+  // positive measure, with the density of its edge's ends.
+  std::unique_ptr<SourceMeasure> makeSource(std::string& error, double power = 1.0) const;
+
+private:
+  DensityField() = default;
+  int locate(Vec2 x) const; // triangle containing x, or -1
+  std::vector<int> bucketRange(Vec2 lo, Vec2 hi) const;
+
+  std::vector<Vec2> Points;
+  std::vector<Triangle> Triangles; // counter-clockwise
+  std::vector<double> PerPoint, PerTriangle;
+  std::vector<Vec2> Hull;
+  std::vector<int> HullIds; // input point id of each hull corner
+  bool UnitDisk = false;
+  double Integral = 0.0, Area = 0.0;
+  // Uniform grid of buckets over the bounding box: triangles and points per bucket.
+  Vec2 Lo, Hi;
+  int Nx = 1, Ny = 1;
+  std::vector<std::vector<int>> TriangleBuckets, PointBuckets;
+};
+
+} // namespace otparam
+
+#endif

@@ -1,0 +1,70 @@
+// A triangulated disk made of concentric rings of 6k points (k = 1..rings) around a centre
+// point, staggered ring to ring: well-shaped triangles, counter-clockwise. Each point is given
+// as (t, azimuth) with t = k / rings in [0, 1]; callers map it to the plane or a sphere.
+#ifndef OTPARAM_TESTING_RINGDISK_H
+#define OTPARAM_TESTING_RINGDISK_H
+
+#include "OTGeometry.h"
+
+#include <cmath>
+#include <vector>
+
+namespace otparam
+{
+namespace testing
+{
+
+struct RingDisk
+{
+  std::vector<double> t, azimuth;
+  std::vector<Triangle> triangles;
+};
+
+inline RingDisk makeRingDisk(int rings)
+{
+  constexpr double Pi = 3.14159265358979323846;
+  RingDisk disk;
+  disk.t.push_back(0.0);
+  disk.azimuth.push_back(0.0);
+  std::vector<int> inner = { 0 };
+  double innerStart = 0.0;
+  for (int k = 1; k <= rings; ++k)
+  {
+    const int no = 6 * k;
+    const double start = (k % 2) * Pi / no;
+    std::vector<int> outer;
+    for (int j = 0; j < no; ++j)
+    {
+      outer.push_back(static_cast<int>(disk.t.size()));
+      disk.t.push_back(static_cast<double>(k) / rings);
+      disk.azimuth.push_back(start + 2.0 * Pi * j / no);
+    }
+    // Zip the two rings together in order of azimuth.
+    const int ni = static_cast<int>(inner.size());
+    int i = 0, o = 0;
+    while (i < (ni == 1 ? 0 : ni) || o < no)
+    {
+      const bool alongOuter = o < no &&
+        (ni == 1 || i == ni ||
+          start + 2.0 * Pi * (o + 1) / no < innerStart + 2.0 * Pi * (i + 1) / ni);
+      if (alongOuter)
+      {
+        disk.triangles.push_back({ inner[i % ni], outer[o], outer[(o + 1) % no] });
+        ++o;
+      }
+      else
+      {
+        disk.triangles.push_back({ inner[i % ni], outer[o % no], inner[(i + 1) % ni] });
+        ++i;
+      }
+    }
+    inner = outer;
+    innerStart = start;
+  }
+  return disk;
+}
+
+} // namespace testing
+} // namespace otparam
+
+#endif
