@@ -366,7 +366,7 @@ std::unordered_set<const void*> boundaryToDrop(const DT& dt, const DensityField&
 // spread of interior masses 0.16 for a constant density); 8 Lloyd steps bring it to 0.09 (32:
 // 0.066; Lloyd converges slowly). Boundary samples stay where they are (on the circle for the
 // unit disk), so their cells stay about half as heavy as interior ones (measured 0.5-0.55).
-constexpr int RelaxationSteps = 8;
+constexpr int RelaxationSteps = 4;
 
 bool relax(const DensityField& field, const SamplerOptions& options, std::vector<Vec2>& samples,
   const std::vector<char>& onBoundary, std::string& error)
@@ -453,7 +453,7 @@ SamplerResult sampleDensity(const DensityField& field, const SamplerOptions& opt
       }
     }
     const double target = static_cast<double>(options.numberOfSamples);
-    double runTarget = target >= 4000.0 ? target / 16.0 : target;
+    double runTarget = target >= 4000.0 ? target / 4.0 : target;
     double epsilon = std::sqrt(integral / runTarget);
     double done = 0.0;
     std::unique_ptr<Refinement> refinement;

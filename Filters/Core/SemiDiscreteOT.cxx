@@ -39,12 +39,12 @@ void sourceBox(const SourceMeasure& source, Vec2& lo, Vec2& hi)
   hi = hi + Vec2{ margin, margin };
 }
 
-// Cell masses, moments and Hessian couplings at the given heights. With stopAtHidden, a hidden
-// Dirac (empty cell) ends the evaluation early with all masses 0: a Newton trial is then
-// rejected anyway, without paying for the integration.
+// Cell masses, moments and (withCouplings) Hessian couplings at the given heights. With
+// stopAtHidden, a hidden Dirac (empty cell) ends the evaluation early with all masses 0: a
+// Newton trial is then rejected anyway, without paying for the integration.
 void evaluate(const SourceMeasure& source, const std::vector<Vec2>& diracs,
   const std::vector<Height>& heights, PowerDiagram& diagram, Evaluation& ev, OTResult& timing,
-  bool stopAtHidden = true)
+  bool stopAtHidden = true, bool withCouplings = true)
 {
   const int n = static_cast<int>(diracs.size());
   auto t0 = Clock::now();
@@ -70,6 +70,7 @@ void evaluate(const SourceMeasure& source, const std::vector<Vec2>& diracs,
   {
     PowerCell cell;
     CellIntegrals integrals;
+    integrals.wantEdgeMass = withCouplings;
     std::vector<Eigen::Triplet<double>> local;
 #pragma omp for schedule(dynamic, 512) nowait
     for (int i = 0; i < n; ++i)
@@ -522,7 +523,7 @@ CellMeasures computeCellMeasures(
   PowerDiagram diagram;
   Evaluation ev;
   evaluate(source, diracs, std::vector<Height>(heights.begin(), heights.end()), diagram, ev,
-    unusedTiming, false);
+    unusedTiming, false, false);
   CellMeasures measures;
   measures.mass = ev.cellMass;
   measures.centroid.resize(diracs.size());

@@ -456,6 +456,10 @@ public:
         const double mv = d0 * m.my + f.cx * m.mxy + f.cy * m.myy;
         out.mass += mass;
         out.moment = out.moment + Vec2{ mu + o.x * mass, mv + o.y * mass };
+        if (!out.wantEdgeMass)
+        {
+          return;
+        }
         // Density along the cell's edges: pieces of this triangle's clipped boundary that lie on
         // cell edge k. A cell edge lying exactly on a mesh edge is counted for the triangle on
         // the cell's side only (a point nudged into the cell must be inside the triangle).

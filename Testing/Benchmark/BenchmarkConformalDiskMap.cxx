@@ -3,6 +3,7 @@
 //
 //   otparam_conformal_benchmark [--repeat R] [mesh ...]   (default: every shared mesh)
 #include "ConformalDiskMap.h"
+#include "ForkedRun.h"
 #include "MeshFiles.h"
 #include "ParameterizationMetrics.h"
 #include "SurfaceMesh.h"
@@ -15,6 +16,7 @@
 #include <vector>
 
 using namespace otparam;
+using otparam::benchmark::median;
 
 namespace
 {
@@ -23,11 +25,6 @@ double seconds(std::chrono::steady_clock::time_point t0)
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-double median(std::vector<double> v)
-{
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
 
 struct Reference
 {

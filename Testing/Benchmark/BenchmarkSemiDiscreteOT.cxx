@@ -3,16 +3,13 @@
 // process so that its peak memory is its own; the table gives the median of the runs.
 //
 //   otparam_benchmark [--repeat R] [--contrast C] [N ...]     (default N: 1000 10000 100000)
+#include "ForkedRun.h"
 #include "OTTestProblems.h"
 #include "PowerDiagram.h"
 #include "SemiDiscreteOT.h"
 
 #include <Eigen/Sparse>
 #include <Eigen/SparseCholesky>
-
-#include <sys/resource.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -98,39 +95,10 @@ Row runOnce(size_t n, double contrast, unsigned seed)
   row.converged = r.converged;
   if (!r.converged)
     std::fprintf(stderr, "n = %zu, seed %u: %s\n", n, seed, r.message.c_str());
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  row.peakMiB = usage.ru_maxrss / 1024.0;
+  row.peakMiB = benchmark::peakMiB();
   return row;
 }
 
-// Runs in a child process; the row comes back through a pipe.
-bool runInChild(size_t n, double contrast, unsigned seed, Row& row)
-{
-  int fd[2];
-  if (pipe(fd) != 0)
-    return false;
-  const pid_t pid = fork();
-  if (pid == 0)
-  {
-    close(fd[0]);
-    const Row r = runOnce(n, contrast, seed);
-    const ssize_t written = write(fd[1], &r, sizeof r);
-    _exit(written == static_cast<ssize_t>(sizeof r) ? 0 : 1);
-  }
-  close(fd[1]);
-  const ssize_t got = read(fd[0], &row, sizeof row);
-  close(fd[0]);
-  int status = 0;
-  waitpid(pid, &status, 0);
-  return got == static_cast<ssize_t>(sizeof row) && WIFEXITED(status) && WEXITSTATUS(status) == 0;
-}
-
-double median(std::vector<double> v)
-{
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
 } // namespace
 
 int main(int argc, char** argv)
@@ -162,7 +130,7 @@ int main(int argc, char** argv)
     for (int k = 0; k < repeat; ++k)
     {
       Row row;
-      if (runInChild(n, contrast, static_cast<unsigned>(k + 1), row))
+      if (benchmark::runInChild([&] { return runOnce(n, contrast, static_cast<unsigned>(k + 1)); }, row))
         rows.push_back(row);
     }
     if (rows.empty())
@@ -170,12 +138,7 @@ int main(int argc, char** argv)
       std::printf("| %zu | failed |\n", n);
       continue;
     }
-    auto med = [&](double Row::*field) {
-      std::vector<double> v;
-      for (const Row& r : rows)
-        v.push_back(r.*field);
-      return median(v);
-    };
+    auto med = [&](double Row::*field) { return benchmark::medianOf(rows, field); };
     const double its = med(&Row::iterations), total = med(&Row::total);
     const double perIteration = total / std::max(1.0, its), ref = med(&Row::reference);
     std::printf("| %zu | %.0f | %.3f | %.3f | %.3f | %.3f | %.3f | %.4f | %.4f | %.1f | %.0f | "

@@ -6,6 +6,7 @@
 
 #include "OTGeometry.h"
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -62,6 +63,34 @@ inline RingDisk makeRingDisk(int rings)
     innerStart = start;
   }
   return disk;
+}
+
+struct PlanarMesh
+{
+  std::vector<Vec2> points;
+  std::vector<Triangle> triangles;
+};
+
+// The unit disk as a flat ring disk: boundary points on the circle.
+inline PlanarMesh makePlanarDisk(int rings)
+{
+  const RingDisk disk = makeRingDisk(rings);
+  PlanarMesh mesh;
+  for (size_t v = 0; v < disk.t.size(); ++v)
+  {
+    mesh.points.push_back(
+      { disk.t[v] * std::cos(disk.azimuth[v]), disk.t[v] * std::sin(disk.azimuth[v]) });
+  }
+  mesh.triangles = disk.triangles;
+  return mesh;
+}
+
+// Two narrow Gaussian peaks over a floor: largest / smallest density = contrast (the kind of
+// exponential peaks a conformal image of a hand has at its finger tips).
+inline double gaussianMixture(Vec2 p, double contrast)
+{
+  auto bump = [&](Vec2 c, double s) { return std::exp(-dot(p - c, p - c) / (s * s)); };
+  return 1.0 + (contrast - 1.0) * std::max(bump({ 0.45, 0.2 }, 0.06), bump({ -0.3, -0.5 }, 0.1));
 }
 
 } // namespace testing
