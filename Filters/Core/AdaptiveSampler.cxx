@@ -204,7 +204,7 @@ private:
     double g = std::max({ f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info() });
     if (Graded)
     {
-      g = std::max(g, Field.maxOverTriangle(toVec(p), toVec(q), toVec(r)));
+      g = std::max(g, Field.maxInsideTriangle(toVec(p), toVec(q), toVec(r)));
     }
     const double nuRadius = radius * grading(g);
     const double shortest = std::sqrt(std::min({ CGAL::squared_distance(p, q),

@@ -280,13 +280,13 @@ double DensityField::value(Vec2 x) const
     0.0, l[0] * PerPoint[tri[0]] + l[1] * PerPoint[tri[1]] + l[2] * PerPoint[tri[2]]);
 }
 
-double DensityField::maxOverTriangle(Vec2 a, Vec2 b, Vec2 c) const
+double DensityField::maxInsideTriangle(Vec2 a, Vec2 b, Vec2 c) const
 {
   if (cross(b - a, c - a) < 0.0)
   {
     std::swap(b, c);
   }
-  double largest = std::max({ value(a), value(b), value(c), value((1.0 / 3.0) * (a + b + c)) });
+  double largest = value((1.0 / 3.0) * (a + b + c));
   const Vec2 lo = { std::min({ a.x, b.x, c.x }), std::min({ a.y, b.y, c.y }) };
   const Vec2 hi = { std::max({ a.x, b.x, c.x }), std::max({ a.y, b.y, c.y }) };
   for (int bucket : bucketRange(lo, hi))

@@ -27,10 +27,10 @@ public:
 
   // Density at x (x outside the domain: the value at the nearest point of the domain).
   double value(Vec2 x) const;
-  // Largest density over the triangle abc: at its corners, its centroid and every input point
-  // inside it (a piecewise-linear density peaks at input points, which a coarse triangle's
-  // corners and centre would miss).
-  double maxOverTriangle(Vec2 a, Vec2 b, Vec2 c) const;
+  // Largest density over the triangle abc at its centroid and every input point inside it (a
+  // piecewise-linear density peaks at input points, which a coarse triangle's corners and
+  // centre would miss); the caller adds the corners, whose values it usually knows already.
+  double maxInsideTriangle(Vec2 a, Vec2 b, Vec2 c) const;
   double integral() const { return Integral; }
   double area() const { return Area; }
 
