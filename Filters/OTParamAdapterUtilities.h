@@ -3,6 +3,9 @@
 #define OTParamAdapterUtilities_h
 
 #include "vtkDoubleArray.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkIntArray.h"
 #include "vtkSmartPointer.h"
 #include "vtkStringArray.h"
@@ -68,6 +71,31 @@ inline vtkSmartPointer<vtkStringArray> MakeString(const char* name, const std::s
 inline double Seconds(std::chrono::steady_clock::time_point start)
 {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// The algorithms are global (a map of the whole surface, a transport between whole measures):
+// every input port asks for all of its data, never a piece.
+inline void RequestWholeInputs(vtkInformationVector** inputVector, int numberOfPorts)
+{
+  for (int port = 0; port < numberOfPorts; ++port)
+  {
+    for (int c = 0; c < inputVector[port]->GetNumberOfInformationObjects(); ++c)
+    {
+      vtkInformation* inInfo = inputVector[port]->GetInformationObject(c);
+      inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
+      inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
+      inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
+    }
+  }
+}
+
+// In parallel runs piece 0 holds the whole result; other pieces stay empty so that it is not
+// duplicated.
+inline bool IsOtherPiece(vtkInformationVector* outputVector)
+{
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  return outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER()) &&
+    outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER()) > 0;
 }
 
 } // namespace otparam_vtk

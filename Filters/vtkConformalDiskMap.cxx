@@ -48,10 +48,7 @@ int vtkConformalDiskMap::RequestUpdateExtent(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
 {
   // The map is global: it needs the whole surface, not a piece of it.
-  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
-  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
-  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
-  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
+  RequestWholeInputs(inputVector, 1);
   return 1;
 }
 
@@ -62,9 +59,7 @@ int vtkConformalDiskMap::RequestData(
   const auto startTotal = std::chrono::steady_clock::now();
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   output->Initialize();
-  vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  if (outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER()) &&
-    outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER()) > 0)
+  if (IsOtherPiece(outputVector))
   {
     return 1; // piece 0 holds the whole result
   }

@@ -87,16 +87,7 @@ int vtkSemiDiscreteOTSolver::RequestUpdateExtent(
 {
   // Transport couples every Dirac with every other one: the solve needs all of the data, not a
   // piece of it (in parallel ParaView, piece 0 does the work, see RequestData).
-  for (int port = 0; port < 2; ++port)
-  {
-    for (int c = 0; c < inputVector[port]->GetNumberOfInformationObjects(); ++c)
-    {
-      vtkInformation* inInfo = inputVector[port]->GetInformationObject(c);
-      inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
-      inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
-      inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
-    }
-  }
+  RequestWholeInputs(inputVector, 2);
   return 1;
 }
 
@@ -119,9 +110,7 @@ int vtkSemiDiscreteOTSolver::RequestData(
   }
 
   // Other pieces stay empty so that parallel runs do not duplicate the (replicated) result.
-  vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  if (outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER()) &&
-    outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER()) > 0)
+  if (IsOtherPiece(outputVector))
   {
     return 1;
   }

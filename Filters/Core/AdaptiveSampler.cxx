@@ -24,6 +24,7 @@
 #include <cmath>
 #include <numeric>
 #include <queue>
+#include <sstream>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -32,6 +33,7 @@ namespace otparam
 namespace
 {
 constexpr double Pi = 3.14159265358979323846;
+constexpr double MaximumBoundaryArc = Pi / 8.0;
 using Clock = std::chrono::steady_clock;
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Point = K::Point_2;
@@ -50,6 +52,18 @@ double secondsSince(Clock::time_point t0)
 Vec2 toVec(const Point& p)
 {
   return { p.x(), p.y() };
+}
+
+// Three boundary samples on a straight boundary edge are collinear only up to rounding: the
+// "triangle" they make has no area, and its circumcentre lies far away. Refining it would split
+// boundary edges forever; it is left alone, and left out of the output.
+bool isSliver(const Point& p, const Point& q, const Point& r)
+{
+  const double longest = std::max({ CGAL::squared_distance(p, q), CGAL::squared_distance(q, r),
+    CGAL::squared_distance(r, p) });
+  const double twiceArea =
+    std::abs((q.x() - p.x()) * (r.y() - p.y()) - (q.y() - p.y()) * (r.x() - p.x()));
+  return twiceArea <= 1e-10 * longest;
 }
 
 class Refinement
@@ -157,14 +171,27 @@ private:
           cumulative[k] + grading(Field.value({ std::cos(a), std::sin(a) })) * 2.0 * Pi / fine;
       }
       const int count = std::max(12, static_cast<int>(std::ceil(cumulative.back() / Epsilon)));
+      std::vector<double> angles;
       for (int s = 0; s < count; ++s)
       {
         const double target = cumulative.back() * s / count;
         const int k = static_cast<int>(
           std::upper_bound(cumulative.begin(), cumulative.end(), target) - cumulative.begin()) - 1;
         const double within = (target - cumulative[k]) / (cumulative[k + 1] - cumulative[k]);
-        const double a = 2.0 * Pi * (k + within) / fine;
-        boundary.push_back({ std::cos(a), std::sin(a) });
+        angles.push_back(2.0 * Pi * (k + within) / fine);
+      }
+      // Where the density (nearly) vanishes the steps above get long: no arc may span more than
+      // MaximumBoundaryArc, so that every boundary edge keeps its arc on the outer side.
+      for (size_t s = 0; s < angles.size(); ++s)
+      {
+        const double from = angles[s];
+        const double to = s + 1 < angles.size() ? angles[s + 1] : angles[0] + 2.0 * Pi;
+        const int pieces = static_cast<int>(std::ceil((to - from) / MaximumBoundaryArc));
+        for (int p = 0; p < pieces; ++p)
+        {
+          const double a = from + (to - from) * p / pieces;
+          boundary.push_back({ std::cos(a), std::sin(a) });
+        }
       }
     }
     else
@@ -209,6 +236,10 @@ private:
     const double nuRadius = radius * grading(g);
     const double shortest = std::sqrt(std::min({ CGAL::squared_distance(p, q),
       CGAL::squared_distance(q, r), CGAL::squared_distance(r, p) }));
+    if (isSliver(p, q, r))
+    {
+      return;
+    }
     const bool tooLarge = nuRadius > Epsilon;
     const bool tooThin = shortest < 2.0 * radius * SinMinimumAngle * (1.0 - 1e-12);
     if (tooLarge || tooThin)
@@ -255,6 +286,7 @@ private:
         }
       }
     }
+    const auto before = Triangulation.number_of_vertices();
     VertexHandle v;
     if (a != VertexHandle())
     {
@@ -269,6 +301,12 @@ private:
     else
     {
       v = insert(toVec(c), located);
+    }
+    if (Triangulation.number_of_vertices() == before)
+    {
+      // The point already existed (an arc or a triangle too small for double precision): leave
+      // this triangle as it is rather than queue it again forever.
+      return;
     }
     auto face = Triangulation.incident_faces(v), done = face;
     do
@@ -400,6 +438,67 @@ bool relax(const DensityField& field, const SamplerOptions& options, std::vector
   return true;
 }
 
+
+struct Candidate
+{
+  std::vector<Vec2> samples;
+  std::vector<Triangle> triangles;
+  std::vector<double> mass;
+  double coefficientOfVariation = std::numeric_limits<double>::infinity();
+};
+
+// Masses: the density over each sample's Voronoi cell clipped to the domain, exactly,
+// normalized to the source mass.
+Candidate massesOf(const SourceMeasure& source, const std::vector<Vec2>& samples, double sourceMass)
+{
+  Candidate c;
+  std::vector<double> heights(samples.size());
+  for (size_t i = 0; i < heights.size(); ++i)
+  {
+    heights[i] = 0.5 * dot(samples[i], samples[i]);
+  }
+  const CellMeasures cells = computeCellMeasures(source, samples, heights);
+  const double total = std::accumulate(cells.mass.begin(), cells.mass.end(), 0.0);
+  c.mass.resize(cells.mass.size());
+  double variance = 0.0;
+  const double mean = sourceMass / static_cast<double>(c.mass.size());
+  for (size_t i = 0; i < cells.mass.size(); ++i)
+  {
+    c.mass[i] = cells.mass[i] * sourceMass / total;
+    variance += (c.mass[i] - mean) * (c.mass[i] - mean);
+  }
+  c.coefficientOfVariation = std::sqrt(variance / static_cast<double>(c.mass.size())) / mean;
+  return c;
+}
+
+// One more refinement pass for angles only (a size bound nothing exceeds): dropping boundary
+// samples and relaxing can leave a few thin triangles. Then the masses.
+Candidate finishCandidate(const DensityField& field, const SamplerOptions& options,
+  const SourceMeasure& source, const std::vector<Vec2>& samples, double sourceMass)
+{
+  Refinement repair(field, options, std::numeric_limits<double>::infinity());
+  repair.run([](long long) { return true; }, &samples);
+  const DT& dt = repair.triangulation();
+  std::vector<Vec2> points;
+  std::vector<Triangle> triangles;
+  std::unordered_map<const void*, int> id;
+  for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v)
+  {
+    id[&*v] = static_cast<int>(points.size());
+    points.push_back(toVec(v->point()));
+  }
+  for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end(); ++f)
+  {
+    if (!isSliver(f->vertex(0)->point(), f->vertex(1)->point(), f->vertex(2)->point()))
+    {
+      triangles.push_back({ id[&*f->vertex(0)], id[&*f->vertex(1)], id[&*f->vertex(2)] });
+    }
+  }
+  Candidate c = massesOf(source, points, sourceMass);
+  c.samples = std::move(points);
+  c.triangles = std::move(triangles);
+  return c;
+}
 } // namespace
 
 SamplerResult sampleDensity(const DensityField& field, const SamplerOptions& options)
@@ -420,20 +519,26 @@ SamplerResult sampleDensity(const DensityField& field, const SamplerOptions& opt
 
   if (options.mode == SamplingMode::MeshVertices)
   {
+    // The used points in input order, so that the input's point arrays line up.
     std::vector<int> id(field.points().size(), -1);
     for (const Triangle& t : field.triangles())
     {
-      Triangle renumbered;
-      for (int k = 0; k < 3; ++k)
+      for (int v : t)
       {
-        if (id[t[k]] < 0)
-        {
-          id[t[k]] = static_cast<int>(result.samples.size());
-          result.samples.push_back(field.points()[t[k]]);
-        }
-        renumbered[k] = id[t[k]];
+        id[v] = 0;
       }
-      result.triangles.push_back(renumbered);
+    }
+    for (size_t v = 0; v < id.size(); ++v)
+    {
+      if (id[v] == 0)
+      {
+        id[v] = static_cast<int>(result.samples.size());
+        result.samples.push_back(field.points()[v]);
+      }
+    }
+    for (const Triangle& t : field.triangles())
+    {
+      result.triangles.push_back({ id[t[0]], id[t[1]], id[t[2]] });
     }
   }
   else
@@ -488,6 +593,7 @@ SamplerResult sampleDensity(const DensityField& field, const SamplerOptions& opt
     }
     result.capped = refinement->capped();
     const DT& dt = refinement->triangulation();
+
     const auto drop = boundaryToDrop(dt, field);
     std::unordered_set<const void*> hull;
     for (VertexHandle v : hullVertices(dt))
@@ -504,7 +610,24 @@ SamplerResult sampleDensity(const DensityField& field, const SamplerOptions& opt
       }
     }
     std::string error;
-    if (!relax(field, options, result.samples, onBoundary, error))
+    const auto source = field.makeSource(error);
+    if (!source)
+    {
+      result.error = error;
+      return result;
+    }
+    // Lloyd steps even out the masses of well-resolved densities, but on a density that varies
+    // faster than the samples can follow (a conformal image with singular corners sampled by a
+    // few hundred points) they can make things worse: keep the relaxed samples only when their
+    // masses are more even (Uniform mode always relaxes: it is a sampling of the area).
+    const std::vector<Vec2> refined = result.samples;
+    Candidate best;
+    if (options.mode == SamplingMode::Adaptive)
+    {
+      best = finishCandidate(field, options, *source, refined, result.sourceMass);
+    }
+    std::vector<Vec2> relaxed = refined;
+    if (!relax(field, options, relaxed, onBoundary, error))
     {
       result.error = error;
       return result;
@@ -514,56 +637,46 @@ SamplerResult sampleDensity(const DensityField& field, const SamplerOptions& opt
       result.aborted = true;
       return result;
     }
-    // The relaxation can leave a few thin triangles: one more refinement pass for angles only
-    // (a size bound that nothing exceeds) restores the angle bound.
-    Refinement repair(field, options, std::numeric_limits<double>::infinity());
-    repair.run([](long long) { return true; }, &result.samples);
-    result.samples.clear();
-    const DT& repaired = repair.triangulation();
-    std::unordered_map<const void*, int> id;
-    for (auto v = repaired.finite_vertices_begin(); v != repaired.finite_vertices_end(); ++v)
+    Candidate candidate = finishCandidate(field, options, *source, relaxed, result.sourceMass);
+    result.relaxed = options.mode != SamplingMode::Adaptive ||
+      candidate.coefficientOfVariation <= best.coefficientOfVariation;
+    if (result.relaxed)
     {
-      id[&*v] = static_cast<int>(result.samples.size());
-      result.samples.push_back(toVec(v->point()));
+      best = std::move(candidate);
     }
-    for (auto f = repaired.finite_faces_begin(); f != repaired.finite_faces_end(); ++f)
+    result.samples = std::move(best.samples);
+    result.triangles = std::move(best.triangles);
+    result.mass = std::move(best.mass);
+    result.massCoefficientOfVariation = best.coefficientOfVariation;
+    result.secondsRefinement = secondsSince(t0);
+    const double reached = static_cast<double>(result.samples.size());
+    if (!result.capped && std::abs(reached / target - 1.0) > 0.1)
     {
-      result.triangles.push_back({ id[&*f->vertex(0)], id[&*f->vertex(1)], id[&*f->vertex(2)] });
+      std::ostringstream text;
+      text << "reached " << result.samples.size() << " samples for a target of "
+           << options.numberOfSamples
+           << ": the density varies too fast for so few samples at this minimum angle (the "
+              "graded refinement needs that many)";
+      result.warning = text.str();
     }
   }
-  result.secondsRefinement = secondsSince(t0);
+  if (options.mode == SamplingMode::MeshVertices)
+  {
+    result.secondsRefinement = secondsSince(t0);
+    t0 = Clock::now();
+    std::string error;
+    const auto source = field.makeSource(error);
+    if (!source)
+    {
+      result.error = error;
+      return result;
+    }
+    const Candidate c = massesOf(*source, result.samples, result.sourceMass);
+    result.mass = c.mass;
+    result.massCoefficientOfVariation = c.coefficientOfVariation;
+    result.secondsMasses = secondsSince(t0);
+  }
   result.minimumAngleDegrees = smallestAngleDegrees(result.samples, result.triangles);
-
-  // Masses: the density over each sample's Voronoi cell clipped to the domain, exactly.
-  t0 = Clock::now();
-  std::string error;
-  const auto source = field.makeSource(error);
-  if (!source)
-  {
-    result.error = error;
-    return result;
-  }
-  std::vector<double> heights(result.samples.size());
-  for (size_t i = 0; i < heights.size(); ++i)
-  {
-    heights[i] = 0.5 * dot(result.samples[i], result.samples[i]);
-  }
-  const CellMeasures cells = computeCellMeasures(*source, result.samples, heights);
-  const double total = std::accumulate(cells.mass.begin(), cells.mass.end(), 0.0);
-  result.mass.resize(cells.mass.size());
-  for (size_t i = 0; i < cells.mass.size(); ++i)
-  {
-    result.mass[i] = cells.mass[i] * result.sourceMass / total;
-  }
-  const double mean = result.sourceMass / static_cast<double>(result.mass.size());
-  double variance = 0.0;
-  for (double m : result.mass)
-  {
-    variance += (m - mean) * (m - mean);
-  }
-  result.massCoefficientOfVariation =
-    std::sqrt(variance / static_cast<double>(result.mass.size())) / mean;
-  result.secondsMasses = secondsSince(t0);
   if (options.progress)
   {
     options.progress(1.0);

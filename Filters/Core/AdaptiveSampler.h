@@ -37,7 +37,8 @@ struct SamplerOptions
 
 struct SamplerResult
 {
-  std::string error; // empty on success
+  std::string error;   // empty on success
+  std::string warning; // e.g. the sample count could not come within 10% of the target
   bool aborted = false;
   bool capped = false; // the refinement stopped at maximumNumberOfSamples
   std::vector<Vec2> samples;
@@ -48,6 +49,7 @@ struct SamplerResult
   double sourceMass = 0.0;         // pi for the unit disk, else the domain's area
   double epsilon = 0.0;            // the nu-length threshold used (Adaptive/Uniform)
   int refinementRuns = 0;          // runs needed to reach the target count within 10%
+  bool relaxed = false;            // Lloyd relaxation kept (it made the masses more even)
   double minimumAngleDegrees = 0.0; // smallest angle of `triangles`
   double massCoefficientOfVariation = 0.0;
   double secondsRefinement = 0.0;

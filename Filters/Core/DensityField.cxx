@@ -126,6 +126,32 @@ std::unique_ptr<DensityField> DensityField::create(const std::vector<Vec2>& poin
       ? area * perTriangle[t]
       : area * (perPoint[tri[0]] + perPoint[tri[1]] + perPoint[tri[2]]) / 3.0;
   }
+  // Once every triangle is counter-clockwise, a tiling uses each directed edge at most once: a
+  // repeated one means overlapping triangles (which the area check below could miss when a
+  // hole has the same area).
+  {
+    std::vector<std::pair<std::pair<int, int>, size_t>> directed;
+    for (size_t t = 0; t < field->Triangles.size(); ++t)
+    {
+      const Triangle& tri = field->Triangles[t];
+      for (int k = 0; k < 3; ++k)
+      {
+        directed.push_back({ { tri[k], tri[(k + 1) % 3] }, t });
+      }
+    }
+    std::sort(directed.begin(), directed.end());
+    for (size_t e = 1; e < directed.size(); ++e)
+    {
+      if (directed[e].first == directed[e - 1].first)
+      {
+        msg << "triangles " << directed[e - 1].second << " and " << directed[e].second
+            << " overlap (both have the edge from point " << directed[e].first.first
+            << " to point " << directed[e].first.second << " on the same side)";
+        error = msg.str();
+        return nullptr;
+      }
+    }
+  }
   if (!(field->Integral > 0.0))
   {
     error = "the density integrates to zero over the domain";
@@ -168,7 +194,8 @@ std::unique_ptr<DensityField> DensityField::create(const std::vector<Vec2>& poin
   field->UnitDisk = true;
   for (const Vec2& p : field->Hull)
   {
-    field->UnitDisk = field->UnitDisk && std::abs(norm(p) - 1.0) <= 1e-9;
+    // 1e-6: a disk whose points were stored in single precision (VTK's default) is still one.
+    field->UnitDisk = field->UnitDisk && std::abs(norm(p) - 1.0) <= 1e-6;
   }
 
   // Buckets: about one triangle per bucket.
@@ -354,7 +381,11 @@ std::unique_ptr<SourceMeasure> DensityField::makeSource(std::string& error, doub
       const size_t next = (k + 1) % Hull.size();
       const Vec2 a = Hull[k], b = Hull[next];
       const double fa = value(a), fb = value(b);
-      const Vec2 apex = (1.0 / (1.0 + dot(a, b))) * (a + b); // where the tangents meet
+      // Where the tangents at a and b meet (p.a = |a|^2, p.b = |b|^2: exact also for points
+      // stored in single precision, whose radii differ from 1 by ~1e-7).
+      const double det = cross(a, b);
+      const Vec2 apex = { (dot(a, a) * b.y - dot(b, b) * a.y) / det,
+        (dot(b, b) * a.x - dot(a, a) * b.x) / det };
       add(a, apex, b, fa, 0.5 * (fa + fb), fb);
     }
   }

@@ -36,7 +36,7 @@ public:
 
   // The domain's boundary, counter-clockwise: the input's convex hull corners.
   const std::vector<Vec2>& boundary() const { return Hull; }
-  // True when every boundary point of the input lies on the unit circle (to 1e-9): the domain
+  // True when every boundary point of the input lies on the unit circle (to 1e-6): the domain
   // is then treated as the unit disk (boundary samples on the circle, source mass pi).
   bool isUnitDisk() const { return UnitDisk; }
 

@@ -113,6 +113,28 @@ TEST(TriangulatedSource, LinearDensityOnSquare)
   EXPECT_NEAR(out.edgeMass[0].second, 2.5, 1e-14);
 }
 
+TEST(TriangulatedSource, CellWithTwoVerticesOneUpToRounding)
+{
+  // A cell 1e-6 across with two vertices 1e-14 apart whose tiny edge points the wrong way (the
+  // rounding noise that power diagrams of samples 1e-6 apart produce): that edge once put
+  // every triangle "outside" and gave the cell mass 0.
+  const Vec2 o = { 0.6, 0.3 };
+  const double h = 1e-6;
+  const std::vector<Vec2> pts = { { o.x + 0.2 * h, o.y + 0.2 * h }, { o.x + 0.8 * h, o.y + 0.2 * h },
+    { o.x + 0.5 * h, o.y + 0.8 * h } };
+  std::string error;
+  auto src = makeTriangulatedSource(pts, { { 0, 1, 2 } }, {}, error);
+  ASSERT_TRUE(src) << error;
+  PowerCell cell;
+  cell.vertices = { o, { o.x - 1.8e-14, o.y + 3e-15 }, { o.x + h, o.y }, { o.x + h, o.y + h },
+    { o.x, o.y + h } };
+  cell.neighbor = { 1, 2, 3, 4, 5 };
+  CellIntegrals out;
+  out.wantEdgeMass = false;
+  src->integrate(cell, out);
+  EXPECT_NEAR(out.mass, 0.18 * h * h, 1e-9 * h * h);
+}
+
 TEST(TriangulatedSource, RejectsBadDomains)
 {
   std::string error;

@@ -1,5 +1,6 @@
 """Loads OTParam.so into ParaView and runs its filters: Semi-Discrete OT Solver on Diracs read
-from a .vtp, Conformal Disk Map on a triangulated ParaView Plane.
+from a .vtp, Conformal Disk Map on a triangulated ParaView Plane, Adaptive Density Sampler on
+a triangulated disk read from a .vtp (and the OT solver on its samples).
 
 Usage: pvpython|pvbatch TestPlugin.py <OTParam.so> <work dir>
 In the GUI (paraview --script=...), the same arguments come from the environment variables
@@ -129,6 +130,96 @@ conformal.UpdatePipeline()
 moved = servermanager.Fetch(conformal)
 x, y, _ = moved.GetPoint(20)
 check(math.hypot(x, y) < 1e-14, f"CenterPointId = 20 goes to the origin ({x}, {y})")
+
+# ---- Adaptive Density Sampler on a triangulated unit disk (rings of 6k points, written by this
+# test) with a smooth AreaDensity per point and per triangle; then the OT solver on its samples.
+rings = 8
+disk_points = vtkPoints()
+disk_points.SetDataTypeToDouble()
+disk_points.InsertNextPoint(0.0, 0.0, 0.0)
+disk_triangles = vtkCellArray()
+inner, inner_start = [0], 0.0
+for k in range(1, rings + 1):
+    count, start = 6 * k, (k % 2) * math.pi / (6 * k)
+    outer = [disk_points.InsertNextPoint(k / rings * math.cos(start + 2 * math.pi * j / count),
+                                         k / rings * math.sin(start + 2 * math.pi * j / count), 0.0)
+             for j in range(count)]
+    ni, i, o = len(inner), 0, 0
+    while (ni > 1 and i < ni) or o < count:  # zip the two rings in order of angle
+        if o < count and (ni == 1 or i == ni or start + 2 * math.pi * (o + 1) / count
+                          < inner_start + 2 * math.pi * (i + 1) / ni):
+            disk_triangles.InsertNextCell(3, (inner[i % ni], outer[o], outer[(o + 1) % count]))
+            o += 1
+        else:
+            disk_triangles.InsertNextCell(3, (inner[i % ni], outer[o % count], inner[(i + 1) % ni]))
+            i += 1
+    inner, inner_start = outer, start
+disk_domain = vtkPolyData()
+disk_domain.SetPoints(disk_points)
+disk_domain.SetPolys(disk_triangles)
+
+
+def disk_density(x, y):
+    return 1.0 + 8.0 * math.exp(-((x - 0.3) ** 2 + y * y) / 0.1)
+
+
+point_density, cell_density = vtkDoubleArray(), vtkDoubleArray()
+point_density.SetName("AreaDensity")
+cell_density.SetName("AreaDensity")
+for i in range(disk_points.GetNumberOfPoints()):
+    point_density.InsertNextValue(disk_density(*disk_points.GetPoint(i)[:2]))
+for t in range(disk_domain.GetNumberOfCells()):
+    corners = [disk_points.GetPoint(disk_domain.GetCell(t).GetPointId(q)) for q in range(3)]
+    cell_density.InsertNextValue(disk_density(sum(p[0] for p in corners) / 3,
+                                              sum(p[1] for p in corners) / 3))
+disk_domain.GetPointData().AddArray(point_density)
+disk_domain.GetCellData().AddArray(cell_density)
+disk_vtp = os.path.join(work_dir, "disk.vtp")
+writer.SetFileName(disk_vtp)
+writer.SetInputData(disk_domain)
+check(writer.Write() == 1, f"wrote {disk_vtp}")
+
+check("AdaptiveDensitySampler" in globals(), "LoadPlugin defines AdaptiveDensitySampler")
+disk_reader = XMLPolyDataReader(FileName=[disk_vtp])
+disk_reader.UpdatePipeline()  # as in the GUI: the array list needs the input's arrays
+sampler = AdaptiveDensitySampler(Input=disk_reader)
+check(sampler.SMProxy.GetXMLLabel() == "Adaptive Density Sampler", "label 'Adaptive Density Sampler'")
+hints = sampler.SMProxy.GetHints()
+menu = hints.FindNestedElementByName("ShowInMenu") if hints else None
+check(menu is not None and menu.GetAttribute("category") == "Optimal Transport",
+      "Adaptive Density Sampler is in the menu category 'Optimal Transport'")
+check(list(sampler.Density)[-1] == "AreaDensity",
+      f"the density defaults to AreaDensity ({list(sampler.Density)})")
+check(sampler.NumberOfSamples == 1000 and sampler.SamplingMode == "Adaptive"
+      and abs(sampler.MinimumAngle - 30.0) < 1e-12 and sampler.SizeRule == "R * sqrt(density)",
+      "NumberOfSamples, SamplingMode, MinimumAngle and SizeRule defaults")
+sampler.NumberOfSamples = 300
+for association in ("POINTS", "CELLS"):
+    sampler.Density = [association, "AreaDensity"]
+    sampler.UpdatePipeline()
+    samples = servermanager.Fetch(sampler)
+    count = samples.GetNumberOfPoints()
+    mass = samples.GetPointData().GetArray("Mass")
+    total = math.fsum(mass.GetValue(i) for i in range(count)) if mass else 0.0
+    check(mass is not None and abs(total - math.pi) <= 1e-9 * math.pi,
+          f"{association} AreaDensity: Mass sums to pi ({total!r})")
+    number = samples.GetFieldData().GetArray("NumberOfSamples")
+    check(number is not None and number.GetValue(0) == count and abs(count - 300) <= 30,
+          f"{association} AreaDensity: field data NumberOfSamples = {count}, within 10% of 300")
+    cv = samples.GetFieldData().GetArray("MassCoefficientOfVariation")
+    print(f"sampler ({association}): {count} samples, mass CV {cv.GetValue(0) if cv else -1:.3f}",
+          flush=True)
+sampler.Density = ["POINTS", "AreaDensity"]
+sampler.SamplingMode = "Mesh Vertices"
+sampler.UpdatePipeline()
+check(servermanager.Fetch(sampler).GetNumberOfPoints() == disk_points.GetNumberOfPoints(),
+      "SamplingMode 'Mesh Vertices': the disk's own points")
+sampler.SamplingMode = "Adaptive"
+chained = SemiDiscreteOTSolver(Diracs=sampler)
+chained.UpdatePipeline()
+converged = servermanager.Fetch(chained).GetFieldData().GetArray("Converged")
+check(converged is not None and converged.GetValue(0) == 1,
+      "the OT solver converges on the sampler's output")
 
 if os.environ.get("OTPARAM_SCREENSHOT") == "1":
     # The GUI only renders views that sit in a layout: use (or create) the active one.

@@ -5,9 +5,9 @@ working again once the input is fixed. Also: points used by no triangle are not 
 import math
 
 from otparam import vtkConformalDiskMap
-from otparam_test_utils import (check_failed_run, MessageRecorder, check, field_value, finish, make_domain, same,
+from otparam_test_utils import (add_cells, cell_lists, grid_triangle_list, check_failed_run, MessageRecorder, check, field_value, finish, make_domain, same,
                                 snapshot)
-from vtkmodules.vtkCommonCore import vtkCommand, vtkDoubleArray, vtkIdList, vtkIntArray
+from vtkmodules.vtkCommonCore import vtkCommand, vtkDoubleArray, vtkIntArray
 from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData
 from vtkmodules.vtkFiltersSources import vtkSphereSource
 
@@ -28,14 +28,7 @@ def grid_points(n=N, x0=-1.0, y0=-1.0, size=2.0):
 
 
 def grid_triangles(n=N, offset=0):
-    """Each grid square (a, b, c, d) counter-clockwise -> triangles (a, b, c), (a, c, d)."""
-    triangles = []
-    for j in range(n - 1):
-        for i in range(n - 1):
-            a = offset + j * n + i
-            b, c, d = a + 1, a + n + 1, a + n
-            triangles += [(a, b, c), (a, c, d)]
-    return triangles
+    return grid_triangle_list(n, offset)
 
 
 def with_arrays(data):
@@ -61,19 +54,6 @@ def good_disk():
     """25 points, 32 triangles, one boundary loop of 16 points, 9 interior points."""
     return mesh(grid_points(), grid_triangles())
 
-
-def cell_lists(data):
-    """The connectivity of every cell type (snapshot() only counts cells)."""
-    ids = vtkIdList()
-    result = []
-    for cells in (data.GetVerts(), data.GetLines(), data.GetPolys(), data.GetStrips()):
-        one = []
-        if cells is not None:
-            for c in range(cells.GetNumberOfCells()):
-                cells.GetCellAtId(c, ids)
-                one.append([ids.GetId(k) for k in range(ids.GetNumberOfIds())])
-        result.append(one)
-    return result
 
 
 def replace_triangle(index, new):
@@ -109,13 +89,6 @@ def points_only():
     data.SetPolys(vtkCellArray())
     return data
 
-
-def add_cells(data, kind, cells):
-    array = vtkCellArray()
-    for cell in cells:
-        array.InsertNextCell(len(cell), cell)
-    getattr(data, "Set" + kind)(array)
-    return data
 
 
 def strips_only():

@@ -6,7 +6,7 @@ import sys
 
 from vtkmodules.util.misc import calldata_type
 from vtkmodules.util.vtkConstants import VTK_STRING
-from vtkmodules.vtkCommonCore import vtkCommand, vtkDoubleArray, vtkPoints
+from vtkmodules.vtkCommonCore import vtkCommand, vtkDoubleArray, vtkIdList, vtkPoints
 from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData
 
 FAILURES = []
@@ -212,3 +212,36 @@ def param_metrics():
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
     return module
+
+
+def grid_triangle_list(n, offset=0):
+    """Each grid square (a, b, c, d) counter-clockwise -> triangles (a, b, c), (a, c, d)."""
+    triangles = []
+    for j in range(n - 1):
+        for i in range(n - 1):
+            a = offset + j * n + i
+            b, c, d = a + 1, a + n + 1, a + n
+            triangles += [(a, b, c), (a, c, d)]
+    return triangles
+
+
+def cell_lists(data):
+    """The connectivity of every cell type (snapshot() only counts cells)."""
+    ids = vtkIdList()
+    result = []
+    for cells in (data.GetVerts(), data.GetLines(), data.GetPolys(), data.GetStrips()):
+        one = []
+        if cells is not None:
+            for c in range(cells.GetNumberOfCells()):
+                cells.GetCellAtId(c, ids)
+                one.append([ids.GetId(k) for k in range(ids.GetNumberOfIds())])
+        result.append(one)
+    return result
+
+
+def add_cells(data, kind, cells):
+    array = vtkCellArray()
+    for cell in cells:
+        array.InsertNextCell(len(cell), cell)
+    getattr(data, "Set" + kind)(array)
+    return data
