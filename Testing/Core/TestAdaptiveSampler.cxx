@@ -184,8 +184,9 @@ TEST(AdaptiveSampler, CapStopsTheRefinement)
 }
 
 // The paper's claim on real conformal images: the area distortion of the shared hand and brain
-// (per triangle, exact), sampled adaptively, gives an OT problem the solver finishes; uniform
-// samples of the same density give masses that differ by orders of magnitude more.
+// (per triangle, exact), sampled adaptively (2e4 samples), gives nearly equal masses and an OT
+// problem the solver finishes; uniform samples of the same density give masses that differ by
+// one to two orders of magnitude more.
 class ConformalImages : public ::testing::TestWithParam<const char*>
 {
 };
@@ -206,7 +207,7 @@ TEST_P(ConformalImages, AdaptiveSamplesMakeTheTransportSolvable)
   const auto [low, high] = std::minmax_element(perTriangle.begin(), perTriangle.end());
 
   SamplerOptions options;
-  options.numberOfSamples = 5000;
+  options.numberOfSamples = 20000;
   const SamplerResult adaptive = sampleDensity(*field, options);
   options.mode = SamplingMode::Uniform;
   const SamplerResult uniform = sampleDensity(*field, options);
@@ -223,7 +224,7 @@ TEST_P(ConformalImages, AdaptiveSamplesMakeTheTransportSolvable)
     fromAdaptive.iterations, fromAdaptive.relativeError, uniform.samples.size(),
     uniform.massCoefficientOfVariation, fromUniform.iterations, fromUniform.relativeError,
     fromUniform.converged ? "converged" : "not converged");
-  EXPECT_LE(adaptive.massCoefficientOfVariation, 0.5);
+  EXPECT_LE(adaptive.massCoefficientOfVariation, 0.3);
   EXPECT_GE(uniform.massCoefficientOfVariation, 10.0 * adaptive.massCoefficientOfVariation);
   EXPECT_TRUE(fromAdaptive.converged) << fromAdaptive.message;
   EXPECT_LE(fromAdaptive.relativeError, 1e-10);
