@@ -88,7 +88,7 @@ public:
       std::vector<std::pair<Point, double>> points;
       for (const Vec2& p : *seeds)
       {
-        points.emplace_back(Point(p.x, p.y), Graded ? Field.value(p) : 1.0);
+        points.emplace_back(Point(p.x, p.y), Graded && std::isfinite(Epsilon) ? Field.value(p) : 1.0);
       }
       Triangulation.insert(points.begin(), points.end());
     }
@@ -151,7 +151,7 @@ private:
   VertexHandle insert(Vec2 p, FaceHandle hint)
   {
     VertexHandle v = Triangulation.insert(Point(p.x, p.y), hint);
-    v->info() = Graded ? Field.value(p) : 1.0;
+    v->info() = Graded && std::isfinite(Epsilon) ? Field.value(p) : 1.0;
     return v;
   }
 
@@ -229,7 +229,7 @@ private:
     const Point c = CGAL::circumcenter(p, q, r);
     const double radius = std::sqrt(CGAL::squared_distance(c, p));
     double g = std::max({ f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info() });
-    if (Graded)
+    if (Graded && std::isfinite(Epsilon)) // an angles-only pass needs no density
     {
       g = std::max(g, Field.maxInsideTriangle(toVec(p), toVec(q), toVec(r)));
     }
@@ -445,6 +445,7 @@ struct Candidate
   std::vector<Triangle> triangles;
   std::vector<double> mass;
   double coefficientOfVariation = std::numeric_limits<double>::infinity();
+  double secondsMasses = 0.0;
 };
 
 // Masses: the density over each sample's Voronoi cell clipped to the domain, exactly,
@@ -494,7 +495,9 @@ Candidate finishCandidate(const DensityField& field, const SamplerOptions& optio
       triangles.push_back({ id[&*f->vertex(0)], id[&*f->vertex(1)], id[&*f->vertex(2)] });
     }
   }
+  const auto t0 = Clock::now();
   Candidate c = massesOf(source, points, sourceMass);
+  c.secondsMasses = secondsSince(t0);
   c.samples = std::move(points);
   c.triangles = std::move(triangles);
   return c;
@@ -618,14 +621,10 @@ SamplerResult sampleDensity(const DensityField& field, const SamplerOptions& opt
     }
     // Lloyd steps even out the masses of well-resolved densities, but on a density that varies
     // faster than the samples can follow (a conformal image with singular corners sampled by a
-    // few hundred points) they can make things worse: keep the relaxed samples only when their
-    // masses are more even (Uniform mode always relaxes: it is a sampling of the area).
+    // few hundred points) they can make things worse: when the relaxed masses spread by more
+    // than 0.3, the unrelaxed samples are tried too and the more even set is kept (Uniform mode
+    // always relaxes: it is a sampling of the area).
     const std::vector<Vec2> refined = result.samples;
-    Candidate best;
-    if (options.mode == SamplingMode::Adaptive)
-    {
-      best = finishCandidate(field, options, *source, refined, result.sourceMass);
-    }
     std::vector<Vec2> relaxed = refined;
     if (!relax(field, options, relaxed, onBoundary, error))
     {
@@ -637,18 +636,23 @@ SamplerResult sampleDensity(const DensityField& field, const SamplerOptions& opt
       result.aborted = true;
       return result;
     }
-    Candidate candidate = finishCandidate(field, options, *source, relaxed, result.sourceMass);
-    result.relaxed = options.mode != SamplingMode::Adaptive ||
-      candidate.coefficientOfVariation <= best.coefficientOfVariation;
-    if (result.relaxed)
+    Candidate best = finishCandidate(field, options, *source, relaxed, result.sourceMass);
+    result.relaxed = true;
+    if (options.mode == SamplingMode::Adaptive && best.coefficientOfVariation > 0.3)
     {
-      best = std::move(candidate);
+      Candidate unrelaxed = finishCandidate(field, options, *source, refined, result.sourceMass);
+      if (unrelaxed.coefficientOfVariation < best.coefficientOfVariation)
+      {
+        best = std::move(unrelaxed);
+        result.relaxed = false;
+      }
     }
+    result.secondsMasses = best.secondsMasses;
     result.samples = std::move(best.samples);
     result.triangles = std::move(best.triangles);
     result.mass = std::move(best.mass);
     result.massCoefficientOfVariation = best.coefficientOfVariation;
-    result.secondsRefinement = secondsSince(t0);
+    result.secondsRefinement = secondsSince(t0) - result.secondsMasses;
     const double reached = static_cast<double>(result.samples.size());
     if (!result.capped && std::abs(reached / target - 1.0) > 0.1)
     {
