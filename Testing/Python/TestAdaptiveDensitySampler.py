@@ -7,7 +7,7 @@ import math
 
 import numpy as np
 from otparam import vtkAdaptiveDensitySampler, vtkConformalDiskMap, vtkSemiDiscreteOTSolver
-from otparam_test_utils import (MessageRecorder, check, field_value, finish, read_mesh, same,
+from otparam_test_utils import (MessageRecorder, check_abort, check, field_value, finish, read_mesh, same,
                                 shared_mesh, snapshot)
 from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.vtkCommonCore import vtkCommand
@@ -107,19 +107,10 @@ sampler.Update()
 check(len(progress) >= 3 and progress[-1] == 1.0, f"progress reported ({len(progress)} events)")
 
 
-def abort(obj, _event):
-    if obj.GetProgress() > 0.05:
-        obj.SetAbortExecute(1)
-
-
 aborting = vtkAdaptiveDensitySampler()
 aborting.SetInputData(disk)
 aborting.SetInputArrayToProcess(0, 0, 0, CELLS, "AreaDensity")
 aborting.SetNumberOfSamples(20000)
-aborting.AddObserver(vtkCommand.ProgressEvent, abort)
-warnings = MessageRecorder(aborting, vtkCommand.WarningEvent)
-aborting.Update()
-check(aborting.GetOutput().GetNumberOfPoints() == 0, "abort leaves the output empty")
-check("abort" in warnings.text().lower(), "abort is reported")
+check_abort(aborting)
 
 finish()

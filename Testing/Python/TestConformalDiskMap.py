@@ -7,7 +7,7 @@ import time
 
 import numpy as np
 from otparam import vtkConformalDiskMap
-from otparam_test_utils import (MessageRecorder, check, field_value, finish, param_metrics,
+from otparam_test_utils import (MessageRecorder, check_abort, check, field_value, finish, param_metrics,
                                 read_mesh, same, shared_mesh, snapshot)
 from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.vtkCommonCore import vtkCommand
@@ -129,17 +129,6 @@ check(len(progress) >= 3 and progress[-1] == 1.0 and progress == sorted(progress
 aborting = vtkConformalDiskMap()
 aborting.SetInputData(surface)
 aborting.SetMaximumNumberOfIterations(50)
-
-
-def abort(obj, _event):
-    if obj.GetProgress() > 0.1:
-        obj.SetAbortExecute(1)
-
-
-aborting.AddObserver(vtkCommand.ProgressEvent, abort)
-warnings = MessageRecorder(aborting, vtkCommand.WarningEvent)
-aborting.Update()
-check(aborting.GetOutput().GetNumberOfPoints() == 0, "abort leaves the output empty")
-check("abort" in warnings.text().lower(), "abort is reported")
+check_abort(aborting, after=0.1)
 
 finish()

@@ -245,3 +245,17 @@ def add_cells(data, kind, cells):
         array.InsertNextCell(len(cell), cell)
     getattr(data, "Set" + kind)(array)
     return data
+
+
+def check_abort(algorithm, after=0.05):
+    """Aborts `algorithm` once its progress passes `after`: the output must stay empty and a
+    warning must say so."""
+    def abort(obj, _event):
+        if obj.GetProgress() > after:
+            obj.SetAbortExecute(1)
+
+    algorithm.AddObserver(vtkCommand.ProgressEvent, abort)
+    warnings = MessageRecorder(algorithm, vtkCommand.WarningEvent)
+    algorithm.Update()
+    check(algorithm.GetOutput().GetNumberOfPoints() == 0, "abort leaves the output empty")
+    check("abort" in warnings.text().lower(), "abort is reported")
