@@ -565,6 +565,7 @@ SamplerResult sampleDensity(const DensityField& field, const SamplerOptions& opt
     double epsilon = std::sqrt(integral / runTarget);
     double done = 0.0;
     std::unique_ptr<Refinement> refinement;
+    std::unordered_set<const void*> drop; // boundary samples dropped from the last run
     for (int run = 0; run < 5; ++run)
     {
       refinement = std::make_unique<Refinement>(field, options, epsilon);
@@ -580,8 +581,9 @@ SamplerResult sampleDensity(const DensityField& field, const SamplerOptions& opt
         result.aborted = true;
         return result;
       }
-      const double count = static_cast<double>(refinement->triangulation().number_of_vertices() -
-        boundaryToDrop(refinement->triangulation(), field).size());
+      drop = boundaryToDrop(refinement->triangulation(), field);
+      const double count =
+        static_cast<double>(refinement->triangulation().number_of_vertices() - drop.size());
       result.epsilon = epsilon;
       if (refinement->capped())
       {
@@ -596,8 +598,6 @@ SamplerResult sampleDensity(const DensityField& field, const SamplerOptions& opt
     }
     result.capped = refinement->capped();
     const DT& dt = refinement->triangulation();
-
-    const auto drop = boundaryToDrop(dt, field);
     std::unordered_set<const void*> hull;
     for (VertexHandle v : hullVertices(dt))
     {
