@@ -198,74 +198,54 @@ std::unique_ptr<DensityField> DensityField::create(const std::vector<Vec2>& poin
     field->UnitDisk = field->UnitDisk && std::abs(norm(p) - 1.0) <= 1e-6;
   }
 
-  // Buckets: about one triangle per bucket.
-  field->Lo = field->Hi = field->Hull.front();
-  for (const Vec2& p : field->Hull)
-  {
-    field->Lo = { std::min(field->Lo.x, p.x), std::min(field->Lo.y, p.y) };
-    field->Hi = { std::max(field->Hi.x, p.x), std::max(field->Hi.y, p.y) };
-  }
-  const double w = field->Hi.x - field->Lo.x, h = field->Hi.y - field->Lo.y;
-  const double side = std::sqrt(w * h / static_cast<double>(triangles.size()));
-  field->Nx = std::clamp(static_cast<int>(w / side), 1, 2048);
-  field->Ny = std::clamp(static_cast<int>(h / side), 1, 2048);
-  field->TriangleBuckets.assign(static_cast<size_t>(field->Nx) * field->Ny, {});
-  field->PointBuckets.assign(static_cast<size_t>(field->Nx) * field->Ny, {});
+  std::vector<BoxTree::Item> triangleBoxes(triangles.size());
   for (size_t t = 0; t < triangles.size(); ++t)
   {
     const Triangle& tri = field->Triangles[t];
-    Vec2 lo = points[tri[0]], hi = points[tri[0]];
+    BoxTree::Item& box = triangleBoxes[t];
+    box.lo = box.hi = points[tri[0]];
     for (int v : tri)
     {
-      lo = { std::min(lo.x, points[v].x), std::min(lo.y, points[v].y) };
-      hi = { std::max(hi.x, points[v].x), std::max(hi.y, points[v].y) };
+      box.lo = { std::min(box.lo.x, points[v].x), std::min(box.lo.y, points[v].y) };
+      box.hi = { std::max(box.hi.x, points[v].x), std::max(box.hi.y, points[v].y) };
     }
-    for (int b : field->bucketRange(lo, hi))
-    {
-      field->TriangleBuckets[b].push_back(static_cast<int>(t));
-    }
+    box.value = field->PerTriangle.empty() ? 0.0 : field->PerTriangle[t];
   }
-  for (size_t i = 0; i < points.size(); ++i)
+  field->TriangleTree = BoxTree(std::move(triangleBoxes));
+  if (field->PerTriangle.empty())
   {
-    if (used[i])
+    std::vector<BoxTree::Item> pointBoxes;
+    field->PointTreeIds.clear();
+    for (size_t i = 0; i < points.size(); ++i)
     {
-      field->PointBuckets[field->bucketRange(points[i], points[i]).front()].push_back(
-        static_cast<int>(i));
+      if (used[i])
+      {
+        pointBoxes.push_back({ points[i], points[i], field->PerPoint[i] });
+        field->PointTreeIds.push_back(static_cast<int>(i));
+      }
     }
+    field->PointTree = BoxTree(std::move(pointBoxes));
   }
   return field;
-}
-
-std::vector<int> DensityField::bucketRange(Vec2 lo, Vec2 hi) const
-{
-  const double cw = (Hi.x - Lo.x) / Nx, ch = (Hi.y - Lo.y) / Ny;
-  const int i0 = std::clamp(static_cast<int>(std::floor((lo.x - Lo.x) / cw)), 0, Nx - 1);
-  const int i1 = std::clamp(static_cast<int>(std::floor((hi.x - Lo.x) / cw)), 0, Nx - 1);
-  const int j0 = std::clamp(static_cast<int>(std::floor((lo.y - Lo.y) / ch)), 0, Ny - 1);
-  const int j1 = std::clamp(static_cast<int>(std::floor((hi.y - Lo.y) / ch)), 0, Ny - 1);
-  std::vector<int> buckets;
-  buckets.reserve(static_cast<size_t>(i1 - i0 + 1) * (j1 - j0 + 1));
-  for (int j = j0; j <= j1; ++j)
-  {
-    for (int i = i0; i <= i1; ++i)
-    {
-      buckets.push_back(j * Nx + i);
-    }
-  }
-  return buckets;
 }
 
 int DensityField::locate(Vec2 x) const
 {
   for (double slack : { 1e-12, 1e-9 })
   {
-    for (int t : TriangleBuckets[bucketRange(x, x).front()])
-    {
+    int found = -1;
+    TriangleTree.findContaining(x, [&](int t) {
       const Triangle& tri = Triangles[t];
       if (inside(x, Points[tri[0]], Points[tri[1]], Points[tri[2]], slack))
       {
-        return t;
+        found = t;
+        return true;
       }
+      return false;
+    });
+    if (found >= 0)
+    {
+      return found;
     }
   }
   return -1;
@@ -316,30 +296,24 @@ double DensityField::maxInsideTriangle(Vec2 a, Vec2 b, Vec2 c) const
   double largest = value((1.0 / 3.0) * (a + b + c));
   const Vec2 lo = { std::min({ a.x, b.x, c.x }), std::min({ a.y, b.y, c.y }) };
   const Vec2 hi = { std::max({ a.x, b.x, c.x }), std::max({ a.y, b.y, c.y }) };
-  for (int bucket : bucketRange(lo, hi))
+  if (PerTriangle.empty())
   {
-    if (PerTriangle.empty())
-    {
-      for (int p : PointBuckets[bucket])
+    PointTree.maximize(lo, hi, largest, [&](int item, double& best) {
+      if (inside(Points[PointTreeIds[item]], a, b, c, 0.0))
       {
-        if (PerPoint[p] > largest && inside(Points[p], a, b, c, 0.0))
-        {
-          largest = PerPoint[p];
-        }
+        best = PerPoint[PointTreeIds[item]];
       }
-    }
-    else
-    {
-      for (int t : TriangleBuckets[bucket])
+    });
+  }
+  else
+  {
+    TriangleTree.maximize(lo, hi, largest, [&](int t, double& best) {
+      const Triangle& tri = Triangles[t];
+      if (inside((1.0 / 3.0) * (Points[tri[0]] + Points[tri[1]] + Points[tri[2]]), a, b, c, 0.0))
       {
-        const Triangle& tri = Triangles[t];
-        if (PerTriangle[t] > largest &&
-          inside((1.0 / 3.0) * (Points[tri[0]] + Points[tri[1]] + Points[tri[2]]), a, b, c, 0.0))
-        {
-          largest = PerTriangle[t];
-        }
+        best = PerTriangle[t];
       }
-    }
+    });
   }
   return largest;
 }

@@ -4,6 +4,7 @@
 #ifndef OTPARAM_DENSITYFIELD_H
 #define OTPARAM_DENSITYFIELD_H
 
+#include "BoxTree.h"
 #include "OTGeometry.h"
 #include "SourceMeasure.h"
 
@@ -53,7 +54,6 @@ public:
 private:
   DensityField() = default;
   int locate(Vec2 x) const; // triangle containing x, or -1
-  std::vector<int> bucketRange(Vec2 lo, Vec2 hi) const;
 
   std::vector<Vec2> Points;
   std::vector<Triangle> Triangles; // counter-clockwise
@@ -62,10 +62,9 @@ private:
   std::vector<int> HullIds; // input point id of each hull corner
   bool UnitDisk = false;
   double Integral = 0.0, Area = 0.0;
-  // Uniform grid of buckets over the bounding box: triangles and points per bucket.
-  Vec2 Lo, Hi;
-  int Nx = 1, Ny = 1;
-  std::vector<std::vector<int>> TriangleBuckets, PointBuckets;
+  BoxTree TriangleTree;          // item = triangle, value = PerTriangle (0 if per point)
+  BoxTree PointTree;             // per-point densities only: item = used point
+  std::vector<int> PointTreeIds; // point id of each PointTree item
 };
 
 } // namespace otparam

@@ -1,5 +1,7 @@
 #include "SourceMeasure.h"
 
+#include "BoxTree.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -355,10 +357,7 @@ public:
   std::vector<Linear> linear;
   double total = 0.0;
   Vec2 lo, hi;
-  // Uniform grid of triangle buckets for overlap queries.
-  int gridNx = 1, gridNy = 1;
-  double cellW = 1, cellH = 1;
-  std::vector<std::vector<int>> buckets;
+  BoxTree triangleBoxes; // overlap queries (triangles of conformal images span 1e10 in size)
   Vec2 innerCenter;
   double innerRadius = 0.0;
 
@@ -380,29 +379,6 @@ public:
     return f.c0 + f.cx * p.x + f.cy * p.y;
   }
 
-  template <typename F>
-  void forCandidateTriangles(Vec2 a, Vec2 b, F&& visit, std::vector<int>& seen, int stamp) const
-  {
-    const int i0 = std::clamp(static_cast<int>((a.x - lo.x) / cellW), 0, gridNx - 1);
-    const int i1 = std::clamp(static_cast<int>((b.x - lo.x) / cellW), 0, gridNx - 1);
-    const int j0 = std::clamp(static_cast<int>((a.y - lo.y) / cellH), 0, gridNy - 1);
-    const int j1 = std::clamp(static_cast<int>((b.y - lo.y) / cellH), 0, gridNy - 1);
-    for (int j = j0; j <= j1; ++j)
-    {
-      for (int i = i0; i <= i1; ++i)
-      {
-        for (int t : buckets[j * gridNx + i])
-        {
-          if (seen[t] != stamp)
-          {
-            seen[t] = stamp;
-            visit(t);
-          }
-        }
-      }
-    }
-  }
-
   void integrate(const PowerCell& cell, CellIntegrals& out) const override
   {
     out.mass = 0.0;
@@ -418,37 +394,33 @@ public:
       cl = { std::min(cl.x, p.x), std::min(cl.y, p.y) };
       ch = { std::max(ch.x, p.x), std::max(ch.y, p.y) };
     }
-    thread_local std::vector<int> seen;
-    thread_local int stamp = 0;
-    if (seen.size() != triangles.size())
-    {
-      seen.assign(triangles.size(), -1);
-      stamp = 0;
-    }
-    ++stamp;
     thread_local std::vector<Vec2> piece, scratch;
-    thread_local std::vector<size_t> crossing;
+    thread_local std::vector<size_t> crossing, usableEdges;
     const double cellSize = norm(ch - cl);
     std::vector<double> edgeIntegral(cell.vertices.size(), 0.0);
     const Vec2 o = cell.vertices[0];
     const size_t n = cell.vertices.size();
-    forCandidateTriangles(cl, ch,
+    usableEdges.clear();
+    for (size_t k = 0; k < n; ++k)
+    {
+      // Two cell vertices that are one point up to rounding (measured: 1e-14 apart) make an
+      // edge with no usable direction that put every triangle outside. Leaving it out moves
+      // the boundary by O(its length^2): nothing at this size.
+      if (norm(cell.vertices[(k + 1) % n] - cell.vertices[k]) > 1e-7 * cellSize)
+      {
+        usableEdges.push_back(k);
+      }
+    }
+    triangleBoxes.forOverlapping(cl, ch,
       [&](int t) {
         const Triangle& tri = triangles[t];
         const Vec2 p0 = points[tri[0]], p1 = points[tri[1]], p2 = points[tri[2]];
         // Clip only against the cell edges that cut the triangle; most triangles are inside
         // every edge but one or two, or outside one edge (measured: 2x faster integration).
         crossing.clear();
-        for (size_t k = 0; k < n; ++k)
+        for (size_t k : usableEdges)
         {
           const Vec2 a = cell.vertices[k], d = cell.vertices[(k + 1) % n] - a;
-          if (norm(d) <= 1e-7 * cellSize)
-          {
-            // Two cell vertices that are one point up to rounding (measured: 1e-14 apart): such
-            // an edge has no usable direction and put every triangle outside. Leaving it out
-            // moves the boundary by O(its length^2): nothing at this size.
-            continue;
-          }
           const bool in0 = cross(d, p0 - a) >= 0.0, in1 = cross(d, p1 - a) >= 0.0,
                      in2 = cross(d, p2 - a) >= 0.0;
           if (!in0 && !in1 && !in2)
@@ -528,8 +500,7 @@ public:
             break;
           }
         }
-      },
-      seen, stamp);
+      });
     for (size_t k = 0; k < n; ++k)
     {
       if (cell.neighbor[k] >= 0 && edgeIntegral[k] > 0.0)
@@ -725,36 +696,21 @@ std::unique_ptr<SourceMeasure> makeTriangulatedSource(const std::vector<Vec2>& p
   }
   src->innerCenter = c;
   src->innerRadius = r;
-  // Bucket grid with about one triangle per bucket.
-  const double w = src->hi.x - src->lo.x, h = src->hi.y - src->lo.y;
-  const double side = std::sqrt(w * h / static_cast<double>(triangles.size()));
-  src->gridNx = std::clamp(static_cast<int>(w / side), 1, 4096);
-  src->gridNy = std::clamp(static_cast<int>(h / side), 1, 4096);
-  src->cellW = w / src->gridNx;
-  src->cellH = h / src->gridNy;
-  src->buckets.assign(static_cast<size_t>(src->gridNx) * src->gridNy, {});
+  std::vector<BoxTree::Item> boxes(triangles.size());
   for (size_t t = 0; t < triangles.size(); ++t)
   {
     const Triangle& tri = src->triangles[t];
-    Vec2 l = points[tri[0]], u = points[tri[0]];
+    BoxTree::Item& box = boxes[t];
+    box.lo = box.hi = points[tri[0]];
     for (int k = 1; k < 3; ++k)
     {
       const Vec2 p = points[tri[k]];
-      l = { std::min(l.x, p.x), std::min(l.y, p.y) };
-      u = { std::max(u.x, p.x), std::max(u.y, p.y) };
+      box.lo = { std::min(box.lo.x, p.x), std::min(box.lo.y, p.y) };
+      box.hi = { std::max(box.hi.x, p.x), std::max(box.hi.y, p.y) };
     }
-    const int i0 = std::clamp(static_cast<int>((l.x - src->lo.x) / src->cellW), 0, src->gridNx - 1);
-    const int i1 = std::clamp(static_cast<int>((u.x - src->lo.x) / src->cellW), 0, src->gridNx - 1);
-    const int j0 = std::clamp(static_cast<int>((l.y - src->lo.y) / src->cellH), 0, src->gridNy - 1);
-    const int j1 = std::clamp(static_cast<int>((u.y - src->lo.y) / src->cellH), 0, src->gridNy - 1);
-    for (int j = j0; j <= j1; ++j)
-    {
-      for (int i = i0; i <= i1; ++i)
-      {
-        src->buckets[j * src->gridNx + i].push_back(static_cast<int>(t));
-      }
-    }
+    box.value = 0.0;
   }
+  src->triangleBoxes = BoxTree(std::move(boxes));
   return src;
 }
 
