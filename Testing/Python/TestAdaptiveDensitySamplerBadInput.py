@@ -7,7 +7,7 @@ import math
 
 from otparam import vtkAdaptiveDensitySampler
 from otparam_test_utils import (add_cells, cell_lists, grid_triangle_list, check_failed_run, MessageRecorder, check, field_value, finish,
-                                make_domain, same, snapshot)
+                                make_domain, ring_disk, same, snapshot)
 from vtkmodules.vtkCommonCore import (vtkCommand, vtkDoubleArray, vtkIntArray,
                                       vtkStringArray)
 from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkDataObject, vtkPolyData
@@ -52,33 +52,8 @@ def with_arrays(data):
 
 
 def flat_disk_geometry(rings=4):
-    """The unit disk as concentric rings of 6k points (staggered), zipped into triangles
-    (counter-clockwise): 1 + 3 rings (rings + 1) points, 6 rings^2 triangles, boundary points on
-    the unit circle."""
-    points = [(0.0, 0.0, 0.0)]
-    triangles = []
-    inner, inner_start = [0], 0.0
-    for k in range(1, rings + 1):
-        count, radius = 6 * k, k / rings
-        start = (k % 2) * math.pi / count
-        outer = []
-        for j in range(count):
-            angle = start + 2.0 * math.pi * j / count
-            outer.append(len(points))
-            points.append((radius * math.cos(angle), radius * math.sin(angle), 0.0))
-        ni, i, o = len(inner), 0, 0
-        while (ni > 1 and i < ni) or o < count:
-            along_outer = o < count and (ni == 1 or i == ni or
-                                         start + 2.0 * math.pi * (o + 1) / count
-                                         < inner_start + 2.0 * math.pi * (i + 1) / ni)
-            if along_outer:
-                triangles.append((inner[i % ni], outer[o], outer[(o + 1) % count]))
-                o += 1
-            else:
-                triangles.append((inner[i % ni], outer[o % count], inner[(i + 1) % ni]))
-                i += 1
-        inner, inner_start = outer, start
-    return points, triangles
+    """The unit disk as a ring disk: boundary points on the unit circle."""
+    return ring_disk(rings, lambda t, azimuth: (t * math.cos(azimuth), t * math.sin(azimuth), 0.0))
 
 
 def good_disk(rings=4):

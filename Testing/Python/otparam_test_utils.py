@@ -214,6 +214,32 @@ def param_metrics():
     return module
 
 
+def ring_disk(rings, lift):
+    """Concentric rings of 6k points (k = 1..rings, staggered) around a centre, zipped into
+    counter-clockwise triangles: 1 + 3 rings (rings + 1) points, 6 rings^2 triangles. Point
+    (t, azimuth), t = k / rings, goes to lift(t, azimuth) = (x, y, z)."""
+    points, triangles = [lift(0.0, 0.0)], []
+    inner, inner_start = [0], 0.0
+    for k in range(1, rings + 1):
+        count = 6 * k
+        start = (k % 2) * math.pi / count
+        outer = []
+        for j in range(count):
+            outer.append(len(points))
+            points.append(lift(k / rings, start + 2.0 * math.pi * j / count))
+        ni, i, o = len(inner), 0, 0
+        while (ni > 1 and i < ni) or o < count:
+            if o < count and (ni == 1 or i == ni or start + 2 * math.pi * (o + 1) / count
+                              < inner_start + 2 * math.pi * (i + 1) / ni):
+                triangles.append((inner[i % ni], outer[o], outer[(o + 1) % count]))
+                o += 1
+            else:
+                triangles.append((inner[i % ni], outer[o % count], inner[(i + 1) % ni]))
+                i += 1
+        inner, inner_start = outer, start
+    return points, triangles
+
+
 def grid_triangle_list(n, offset=0):
     """Each grid square (a, b, c, d) counter-clockwise -> triangles (a, b, c), (a, c, d)."""
     triangles = []

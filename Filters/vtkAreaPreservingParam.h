@@ -1,0 +1,174 @@
+/**
+ * @class   vtkAreaPreservingParam
+ * @brief   Area-preserving parameterization of a disk-like surface onto the unit disk.
+ *
+ * The whole method of OTParam as one filter: vtkConformalDiskMap -> vtkAdaptiveDensitySampler
+ * (on the conformal image's exact per-triangle `AreaDensity`) -> vtkSemiDiscreteOTSolver (the
+ * unit disk with uniform density as source) -> composition T^-1 o phi, run as an internal
+ * pipeline of the three filters. The composition (Filters/Core/AreaPreservingComposition.h)
+ * maps every sample to the centroid of its power cell, every mesh vertex by piecewise-linear
+ * interpolation over the samples' Delaunay triangulation (boundary vertices exactly on the
+ * circle), untangles any flipped triangle, and then, with AreaCorrection on (the default),
+ * moves vertices so that each triangle gets its surface area fraction, which removes what the
+ * interpolation between a finite number of samples leaves. Both figures, before and after the
+ * correction, are in the field data.
+ *
+ * Input: a triangle surface, genus 0, exactly one boundary loop (as for vtkConformalDiskMap).
+ *
+ * Output port 0: the input surface (3D points and arrays unchanged) with texture coordinates =
+ * the area-preserving disk coordinates, also as point array `AreaPreservingCoordinates`
+ * (2 components), point array `ConformalCoordinates` (2 components), cell arrays
+ * `LogAreaRatio` (log of disk area / surface area, both normalized to pi), `AngleDistortion`
+ * (mean |log corner-angle ratio| per triangle) and `QuasiConformalDilatation`. Points used by
+ * no triangle get NaN coordinates. Field data: `Iterations`, `RelativeError`, `Converged` (of
+ * the transport), `NumberOfSamples`, `MassCoefficientOfVariation`, `FlippedTriangles`,
+ * `MeanAbsLogAreaRatio`, `MaximumAbsLogAreaRatio`, `MeanAngleDistortion`,
+ * `MaximumAngleDistortion` (degrees), `MeanQuasiConformalDilatation`, the same figures of the
+ * conformal map prefixed `Conformal` (e.g. `ConformalMeanAbsLogAreaRatio`), the composition's
+ * `InterpolatedMeanAbsLogAreaRatio`, `InterpolatedFlippedTriangles`, `UntangledVertices`,
+ * `CorrectionSweeps`, and `SecondsConformalMap`, `SecondsSampling`, `SecondsTransport`,
+ * `SecondsComposition`, `SecondsTotal`.
+ *
+ * Output port 1: the flattened area-preserving disk mesh: points (u, v, 0), the same triangles
+ * and cell arrays, point arrays `Coordinates3D`, `ConformalCoordinates`, `vtkOriginalPointIds`.
+ *
+ * Output port 2: a vtkTable of histograms, NumberOfHistogramBins rows, for ParaView's bar
+ * chart view: for each of `ConformalAngleDistortion`, `AreaPreservingAngleDistortion`,
+ * `ConformalLogAreaRatio`, `AreaPreservingLogAreaRatio` a column `<name>` (number of
+ * triangles in the bin) and a column `<name>BinCenter`.
+ *
+ * Bad input is rejected by the stage that finds it, with that stage's message prefixed by its
+ * name ("conformal map: ...", "sampling: ...", "transport: ..."); own parameters are checked
+ * first. RequestData then returns 0 and the outputs are empty; the input is never modified.
+ * Progress covers the four stages; AbortExecute is passed on to the running stage.
+ */
+#ifndef vtkAreaPreservingParam_h
+#define vtkAreaPreservingParam_h
+
+#include "OTParamFiltersModule.h" // for export macro
+#include "vtkPolyDataAlgorithm.h"
+
+#include <string> // for the stage messages
+
+class OTPARAMFILTERS_EXPORT vtkAreaPreservingParam : public vtkPolyDataAlgorithm
+{
+public:
+  static vtkAreaPreservingParam* New();
+  vtkTypeMacro(vtkAreaPreservingParam, vtkPolyDataAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  enum SamplingModes
+  {
+    ADAPTIVE = 0,
+    UNIFORM = 1,
+    MESH_VERTICES = 2
+  };
+
+  ///@{
+  /**
+   * Approximate number of Dirac samples of the conformal factor (vtkAdaptiveDensitySampler's
+   * NumberOfSamples). Default 5000.
+   */
+  vtkSetMacro(NumberOfSamples, int);
+  vtkGetMacro(NumberOfSamples, int);
+  ///@}
+
+  ///@{
+  /**
+   * 0 = Adaptive (default, the paper's Algorithm 2), 1 = Uniform, 2 = MeshVertices
+   * (vtkAdaptiveDensitySampler's SamplingMode).
+   */
+  vtkSetMacro(SamplingMode, int);
+  vtkGetMacro(SamplingMode, int);
+  void SetSamplingModeToAdaptive() { this->SetSamplingMode(ADAPTIVE); }
+  void SetSamplingModeToUniform() { this->SetSamplingMode(UNIFORM); }
+  void SetSamplingModeToMeshVertices() { this->SetSamplingMode(MESH_VERTICES); }
+  ///@}
+
+  ///@{
+  /**
+   * Largest relative cell-mass error the transport accepts (vtkSemiDiscreteOTSolver's
+   * Tolerance). Default 1e-10.
+   */
+  vtkSetMacro(Tolerance, double);
+  vtkGetMacro(Tolerance, double);
+  ///@}
+
+  ///@{
+  /**
+   * Newton iterations allowed to the transport. Default 200.
+   */
+  vtkSetMacro(MaximumNumberOfIterations, int);
+  vtkGetMacro(MaximumNumberOfIterations, int);
+  ///@}
+
+  ///@{
+  /**
+   * The conformal map's normalization (vtkConformalDiskMap): the interior point sent to the
+   * origin and the boundary point sent to the positive u axis; -1 (default) = automatic. The
+   * transport keeps the centre at the origin only approximately; the alignment ray is kept
+   * for radially symmetric surfaces.
+   */
+  vtkSetMacro(CenterPointId, vtkIdType);
+  vtkGetMacro(CenterPointId, vtkIdType);
+  vtkSetMacro(AlignPointId, vtkIdType);
+  vtkGetMacro(AlignPointId, vtkIdType);
+  ///@}
+
+  ///@{
+  /**
+   * Move vertices after the interpolation so that every triangle gets its surface area
+   * fraction (see the class description). Default on.
+   */
+  vtkSetMacro(AreaCorrection, bool);
+  vtkGetMacro(AreaCorrection, bool);
+  vtkBooleanMacro(AreaCorrection, bool);
+  ///@}
+
+  ///@{
+  /**
+   * Most Gauss-Seidel sweeps of the area correction. Default 200 (the correction usually stops
+   * earlier, when a sweep lowers the mean |log area ratio| by less than 1%).
+   */
+  vtkSetMacro(MaximumCorrectionSweeps, int);
+  vtkGetMacro(MaximumCorrectionSweeps, int);
+  ///@}
+
+  ///@{
+  /**
+   * Bins of each histogram on output port 2. Default 50.
+   */
+  vtkSetMacro(NumberOfHistogramBins, int);
+  vtkGetMacro(NumberOfHistogramBins, int);
+  ///@}
+
+protected:
+  vtkAreaPreservingParam();
+  ~vtkAreaPreservingParam() override;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int FillOutputPortInformation(int port, vtkInformation* info) override;
+  int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  int NumberOfSamples = 5000;
+  int SamplingMode = ADAPTIVE;
+  double Tolerance = 1e-10;
+  int MaximumNumberOfIterations = 200;
+  vtkIdType CenterPointId = -1;
+  vtkIdType AlignPointId = -1;
+  bool AreaCorrection = true;
+  int MaximumCorrectionSweeps = 200;
+  int NumberOfHistogramBins = 50;
+
+private:
+  vtkAreaPreservingParam(const vtkAreaPreservingParam&) = delete;
+  void operator=(const vtkAreaPreservingParam&) = delete;
+
+  // Runs one stage of the internal pipeline with its progress mapped to [start, end] of ours,
+  // our abort passed on, and its errors and warnings collected (prefixed with `name`).
+  bool RunStage(vtkAlgorithm* stage, const char* name, double start, double end);
+  std::string StageError;
+};
+
+#endif

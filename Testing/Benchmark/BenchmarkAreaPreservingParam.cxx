@@ -1,0 +1,182 @@
+// Benchmark of the whole area-preserving parameterization (the stages vtkAreaPreservingParam
+// runs, called on the core directly) on the shared meshes: seconds per stage and in total
+// (median of the runs), peak memory, the scorer's figures, and CGAL's iterative authalic map
+// from reference-figures.md beside them.
+//
+//   otparam_param_benchmark [--repeat R] [--samples N] [--correction-decrease F]
+//                           [--no-correction] [mesh ...]   (default: every shared mesh)
+#include "AdaptiveSampler.h"
+#include "AreaPreservingComposition.h"
+#include "ConformalDiskMap.h"
+#include "DensityField.h"
+#include "ForkedRun.h"
+#include "MeshFiles.h"
+#include "ParameterizationMetrics.h"
+#include "SemiDiscreteOT.h"
+#include "SurfaceMesh.h"
+
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <string>
+#include <vector>
+
+using namespace otparam;
+using otparam::benchmark::medianOf;
+
+namespace
+{
+using Clock = std::chrono::steady_clock;
+double seconds(Clock::time_point t0)
+{
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+struct Reference
+{
+  const char* mesh;
+  double iaArea, iaSeconds; // CGAL iterative authalic: mean |log area ratio|, seconds
+};
+
+const Reference References[] = {
+  { "hand_stein_810.obj", 0.690, 0.07 },
+  { "hemisphere_2k.obj", 0.040, 0.31 },
+  { "face_dense_gpp_5k.obj", 0.117, 0.92 },
+  { "face_choi_bff_17k.obj", 0.137, 6.74 },
+  { "chinese_lion_17k.off", 0.159, 6.61 },
+  { "ogre_face_20k.obj", 0.143, 8.31 },
+  { "face_maxplanck_partial_32k.obj", 0.073, 19.24 },
+  { "brain_cortex_cut_48k.off", 0.415, 45.50 },
+  { "hand_choi_53k.off", 0.632, 53.55 },
+  { "bust_aphrodite_56k.obj", -1, -1 },
+};
+
+struct Row
+{
+  bool ok;
+  double conformal, sampler, transport, composition, total, peak;
+  int samples, iterations, converged, sweeps;
+  double relativeError, interpolatedArea, area, areaMax, angle;
+  long long flipsInterpolated, flips;
+};
+
+Row run(const SurfaceMesh& mesh, long long numberOfSamples, const CompositionOptions& options)
+{
+  Row row{};
+  const auto t0 = Clock::now();
+  std::vector<int> loop;
+  if (!checkDiskTopology(mesh, loop).empty())
+    return row;
+  const ConformalDiskMapResult map = computeConformalDiskMap(mesh, loop);
+  std::vector<double> perTriangle, perPoint;
+  computeAreaDensity(mesh, map.uv, perTriangle, perPoint);
+  row.conformal = seconds(t0);
+
+  auto t = Clock::now();
+  std::string error;
+  const auto field = DensityField::create(map.uv, mesh.triangles, {}, perTriangle, error);
+  if (!field)
+    return row;
+  SamplerOptions samplerOptions;
+  samplerOptions.numberOfSamples = numberOfSamples;
+  const SamplerResult samples = sampleDensity(*field, samplerOptions);
+  row.sampler = seconds(t);
+  row.samples = static_cast<int>(samples.samples.size());
+
+  t = Clock::now();
+  const auto disk = makeUnitDiskSource();
+  const OTResult ot = solveSemiDiscreteOT(*disk, samples.samples, samples.mass);
+  row.transport = seconds(t);
+  row.iterations = ot.iterations;
+  row.converged = ot.converged;
+  row.relativeError = ot.relativeError;
+
+  t = Clock::now();
+  const CompositionResult composed =
+    composeWithInverseTransport(mesh, map.uv, loop, samples.samples, ot.centroids, options);
+  row.composition = seconds(t);
+  row.total = seconds(t0);
+  row.sweeps = composed.correctionSweeps;
+  row.interpolatedArea = composed.meanAbsLogAreaRatioInterpolated;
+  row.flipsInterpolated = composed.flippedAfterInterpolation;
+
+  const DistortionFigures figures = measureDistortion(mesh, composed.uv);
+  row.area = figures.meanAbsLogAreaRatio;
+  row.areaMax = figures.maximumAbsLogAreaRatio;
+  row.angle = figures.meanAngleDistortionDegrees;
+  row.flips = figures.flippedTriangles;
+  row.peak = benchmark::peakMiB();
+  row.ok = composed.error.empty();
+  return row;
+}
+} // namespace
+
+int main(int argc, char** argv)
+{
+  int repeat = 3;
+  long long numberOfSamples = 10000;
+  CompositionOptions options;
+  std::vector<std::string> meshes;
+  for (int i = 1; i < argc; ++i)
+  {
+    if (!std::strcmp(argv[i], "--repeat") && i + 1 < argc)
+      repeat = std::max(1, std::atoi(argv[++i]));
+    else if (!std::strcmp(argv[i], "--samples") && i + 1 < argc)
+      numberOfSamples = std::atoll(argv[++i]);
+    else if (!std::strcmp(argv[i], "--correction-decrease") && i + 1 < argc)
+      options.correctionRelativeDecrease = std::atof(argv[++i]);
+    else if (!std::strcmp(argv[i], "--no-correction"))
+      options.correctAreas = false;
+    else
+      meshes.push_back(argv[i]);
+  }
+  if (meshes.empty())
+    for (const auto& r : References)
+      meshes.push_back(r.mesh);
+
+  std::printf("Area-preserving parameterization, %lld samples requested, median of %d runs\n"
+              "(seconds; conformal = topology checks + conformal map + AreaDensity, sampler =\n"
+              "density field + adaptive sampling, transport = semi-discrete OT to 1e-10,\n"
+              "composition = interpolation + untangling + area correction; area = mean |log area\n"
+              "ratio| before (interp) and after the correction; peak memory of the process)\n\n",
+    numberOfSamples, repeat);
+  std::printf("| mesh | vertices | samples | conformal | sampler | transport | composition | total "
+              "| MiB | its | rel. error | flips interp/final | area interp | area | area max | "
+              "angle | sweeps | CGAL IA area | CGAL IA s |\n"
+              "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  for (const auto& name : meshes)
+  {
+    const SurfaceMesh mesh = testing::readMesh(testing::sharedMesh(name));
+    std::vector<Row> rows;
+    for (int r = 0; r < repeat; ++r)
+    {
+      Row row{};
+      if (!benchmark::runInChild([&] { return run(mesh, numberOfSamples, options); }, row) || !row.ok)
+      {
+        std::printf("| %s | failed |\n", name.c_str());
+        break;
+      }
+      rows.push_back(row);
+    }
+    if (rows.empty())
+      continue;
+    const Row& last = rows.back();
+    const Reference* ref = nullptr;
+    for (const auto& r : References)
+      if (name == r.mesh)
+        ref = &r;
+    std::printf("| %s | %zu | %d | %.2f | %.2f | %.2f | %.2f | %.2f | %.0f | %d | %.1e | %lld/%lld "
+                "| %.4f | %.4f | %.2f | %.2f | %d |",
+      name.c_str(), mesh.points.size(), last.samples, medianOf(rows, &Row::conformal),
+      medianOf(rows, &Row::sampler), medianOf(rows, &Row::transport),
+      medianOf(rows, &Row::composition), medianOf(rows, &Row::total), medianOf(rows, &Row::peak),
+      last.iterations, last.relativeError, last.flipsInterpolated, last.flips,
+      last.interpolatedArea, last.area, last.areaMax, last.angle, last.sweeps);
+    if (ref && ref->iaSeconds >= 0)
+      std::printf(" %.3f | %.2f |\n", ref->iaArea, ref->iaSeconds);
+    else
+      std::printf(" - | - |\n");
+    std::fflush(stdout);
+  }
+  return 0;
+}
