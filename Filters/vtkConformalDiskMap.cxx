@@ -287,6 +287,9 @@ int vtkConformalDiskMap::RequestData(
   fd->AddArray(MakeIntScalar("Iterations", map.iterations));
   fd->AddArray(MakeScalar("ConformalEnergy", map.conformalEnergy));
   fd->AddArray(MakeIntScalar("ClippedEars", map.clippedEars));
+  fd->AddArray(
+    MakeIntScalar("FoldedWithMeshLaplacian", static_cast<int>(map.foldedWithMeshLaplacian)));
+  fd->AddArray(MakeIntScalar("IntrinsicLaplacian", map.intrinsicLaplacian ? 1 : 0));
   auto idScalar = [](const char* name, vtkIdType value) {
     vtkNew<vtkIdTypeArray> array;
     array->SetName(name);

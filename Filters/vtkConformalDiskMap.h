@@ -27,8 +27,11 @@
  * corners), `MeanQuasiConformalDilatation` (area-weighted), `MaximumQuasiConformalDilatation`,
  * `FlippedTriangles`, `MeanAbsLogAreaRatio`, `MaximumAbsLogAreaRatio`,
  * `MaximumBoundaryRadiusError`, `Iterations`, `ConformalEnergy`, `ClippedEars`,
- * `CenterPointId`, `AlignPointId` (input point ids actually used), `SecondsFactorization`,
- * `SecondsIterations`, `SecondsTotal`.
+ * `FoldedWithMeshLaplacian` and `IntrinsicLaplacian` (int: when the mesh's own cotangent
+ * Laplacian folds triangles, which its negative weights across obtuse triangles allow, the
+ * map is computed again with the Laplacian of the intrinsic Delaunay triangulation, which
+ * cannot fold, and kept if it folds fewer), `CenterPointId`, `AlignPointId` (input point ids
+ * actually used), `SecondsFactorization`, `SecondsIterations`, `SecondsTotal`.
  *
  * Bad input (no triangles, non-triangle cells, NaN coordinates, zero-area triangles,
  * non-manifold edges or vertices, inconsistent orientation, several components, no or several

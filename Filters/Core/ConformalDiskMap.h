@@ -34,6 +34,11 @@ struct ConformalDiskMapResult
   double lastAngleUpdate = 0.0;  // radians
   double conformalEnergy = 0.0;  // Dirichlet energy minus image area (0 = conformal)
   int clippedEars = 0;
+  // Triangles the mesh's own cotangent Laplacian folded; when > 0 the map was computed again
+  // with the intrinsic Delaunay Laplacian, kept if it folds fewer (intrinsicLaplacian = true).
+  std::int64_t foldedWithMeshLaplacian = 0;
+  bool intrinsicLaplacian = false;
+  int intrinsicFlips = 0; // edge flips to the intrinsic Delaunay triangulation
   double secondsFactorization = 0.0;
   double secondsIterations = 0.0;
 };

@@ -204,6 +204,37 @@ INSTANTIATE_TEST_SUITE_P(ConformalDiskMap, SharedMeshes,
     return name.substr(0, name.find('.'));
   });
 
+TEST(ConformalDiskMap, SteepBumpsDoNotFold)
+{
+  // A height field with five tall, narrow bumps on a ring disk: lifted, the ring triangles
+  // turn obtuse, the mesh's cotangent weights go negative and its harmonic map folds (200
+  // triangles measured); the intrinsic Delaunay Laplacian must take over and fold none.
+  const RingDisk disk = makeRingDisk(80);
+  SurfaceMesh mesh;
+  for (size_t v = 0; v < disk.t.size(); ++v)
+  {
+    const double x = disk.t[v] * std::cos(disk.azimuth[v]);
+    const double y = disk.t[v] * std::sin(disk.azimuth[v]);
+    double z = 0.0;
+    for (int k = 0; k < 5; ++k)
+    {
+      const double a = -1.7 + 0.75 * k, cx = 0.5 * std::cos(a), cy = 0.5 * std::sin(a);
+      const double along = (x - cx) * std::cos(a) + (y - cy) * std::sin(a);
+      const double across = -(x - cx) * std::sin(a) + (y - cy) * std::cos(a);
+      z += std::exp(-std::pow(along / 0.3, 2) - std::pow(across / 0.075, 2));
+    }
+    mesh.points.push_back({ x, y, z });
+  }
+  mesh.triangles = disk.triangles;
+  const Mapped m = mapMesh(mesh);
+  EXPECT_GT(m.map.foldedWithMeshLaplacian, 0);
+  EXPECT_TRUE(m.map.intrinsicLaplacian);
+  EXPECT_GT(m.map.intrinsicFlips, 0);
+  EXPECT_EQ(m.figures.flippedTriangles, 0);
+  EXPECT_LE(m.figures.meanAngleDistortionDegrees, 1.5);
+  EXPECT_LE(largestBoundaryRadiusError(m), 1e-14);
+}
+
 TEST(ConformalDiskMap, RejectsBadCentreAndAlignVertices)
 {
   const SurfaceMesh mesh = makeHemisphere(4);
