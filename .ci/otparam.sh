@@ -1,7 +1,10 @@
 #!/usr/bin/env bash
 # Set-up, build, main job and tests of OTParam on Debian 12, as root (or with sudo).
 #
-#   bash .ci/otparam.sh main [output dir]   install packages, build, run the example
+#   bash .ci/otparam.sh main [output dir] [--mesh FILE]
+#                                           install packages, build, run the full pipeline on
+#                                           the built-in surface (or FILE) and write its
+#                                           outputs and pictures
 #   bash .ci/otparam.sh test                install packages, build, run every test (ctest),
 #                                           then the core's unit tests with ASan + UBSan
 #   bash .ci/otparam.sh setup               install packages and build only
@@ -61,14 +64,15 @@ setup() {
 }
 
 run_main() {
-  local output=${1:-$repo/otparam-output}
+  local output=$repo/otparam-output
+  if [ $# -gt 0 ] && [ "${1#-}" = "$1" ]; then
+    output=$1
+    shift
+  fi
   setup
-  log "main job: conformal disk map of the built-in surface -> $output"
+  log "main job: area-preserving parameterization ${*:-of the built-in hand-like surface} -> $output"
   PYTHONPATH="$build/lib/python3/dist-packages${PYTHONPATH:+:$PYTHONPATH}" \
-    "$python" "$repo/Examples/conformal_map_demo.py" "$output"
-  log "main job: semi-discrete OT on the built-in example -> $output"
-  PYTHONPATH="$build/lib/python3/dist-packages${PYTHONPATH:+:$PYTHONPATH}" \
-    "$python" "$repo/Examples/ot_solver_demo.py" "$output"
+    "$python" "$repo/Examples/area_preserving_demo.py" "$output" "$@"
 }
 
 run_tests() {
@@ -98,5 +102,5 @@ case "${1:-}" in
   main) shift; run_main "$@" ;;
   test) run_tests ;;
   setup) setup ;;
-  *) echo "usage: $0 main [output dir] | test | setup" >&2; exit 2 ;;
+  *) echo "usage: $0 main [output dir] [--mesh FILE] | test | setup" >&2; exit 2 ;;
 esac

@@ -18,87 +18,21 @@ import math
 import os
 import sys
 
-from otparam_example_utils import ensure_display, save_png
-from vtkmodules.vtkCommonCore import vtkDoubleArray, vtkPoints, vtkUnsignedCharArray
-from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkImageData, vtkPolyData
+from otparam_example_utils import ensure_display, read_surface, ring_surface, save_png
+from vtkmodules.vtkCommonCore import vtkDoubleArray, vtkUnsignedCharArray
+from vtkmodules.vtkCommonDataModel import vtkImageData, vtkPolyData
 
 
 def make_default_surface(rings=40):
     """A disk-like surface generated here: concentric rings of 6k points over the unit disk,
     lifted by three Gaussian bumps (a nose and two cheeks, roughly), so that the conformal map
     has a visibly non-uniform area distortion."""
-    points = vtkPoints()
-    points.SetDataTypeToDouble()
-    polys = vtkCellArray()
-
     def height(x, y):
         bumps = ((0.0, -0.1, 0.5, 0.28), (-0.45, 0.3, 0.3, 0.25), (0.45, 0.3, 0.3, 0.25))
         return sum(a * math.exp(-((x - cx) ** 2 + (y - cy) ** 2) / (s * s))
                    for cx, cy, a, s in bumps)
 
-    points.InsertNextPoint(0.0, 0.0, height(0.0, 0.0))
-    inner, inner_start = [0], 0.0
-    for k in range(1, rings + 1):
-        count, radius = 6 * k, k / rings
-        start = (k % 2) * math.pi / count  # staggered rings give better triangles
-        outer = []
-        for j in range(count):
-            angle = start + 2.0 * math.pi * j / count
-            x, y = radius * math.cos(angle), radius * math.sin(angle)
-            outer.append(points.InsertNextPoint(x, y, height(x, y)))
-        # Zip the rings together in order of angle (counter-clockwise seen from +z).
-        ni = len(inner)
-        i = o = 0
-        while (ni > 1 and i < ni) or o < count:
-            along_outer = o < count and (ni == 1 or i == ni or
-                                         start + 2.0 * math.pi * (o + 1) / count
-                                         < inner_start + 2.0 * math.pi * (i + 1) / ni)
-            if along_outer:
-                polys.InsertNextCell(3, (inner[i % ni], outer[o], outer[(o + 1) % count]))
-                o += 1
-            else:
-                polys.InsertNextCell(3, (inner[i % ni], outer[o % count], inner[(i + 1) % ni]))
-                i += 1
-        inner, inner_start = outer, start
-    surface = vtkPolyData()
-    surface.SetPoints(points)
-    surface.SetPolys(polys)
-    return surface
-
-
-def read_surface(path):
-    """A triangle surface from .vtp, .obj or .off (VTK 9.2 has no OFF reader)."""
-    if path.lower().endswith(".vtp"):
-        from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
-        reader = vtkXMLPolyDataReader()
-        reader.SetFileName(path)
-        reader.Update()
-        return reader.GetOutput()
-    points, faces = vtkPoints(), vtkCellArray()
-    points.SetDataTypeToDouble()
-    with open(path) as f:
-        if path.lower().endswith(".off"):
-            tokens = [t for line in f for t in line.split("#")[0].split()]
-            nv, nf = int(tokens[1]), int(tokens[2])
-            for v in range(nv):
-                points.InsertNextPoint(*(float(t) for t in tokens[4 + 3 * v:7 + 3 * v]))
-            p = 4 + 3 * nv
-            for _ in range(nf):
-                k = int(tokens[p])
-                faces.InsertNextCell(k, [int(t) for t in tokens[p + 1:p + 1 + k]])
-                p += 1 + k
-        else:
-            for line in f:
-                if line.startswith("v "):
-                    points.InsertNextPoint(*(float(t) for t in line.split()[1:4]))
-                elif line.startswith("f "):
-                    ids = [int(t.split("/")[0]) for t in line.split()[1:]]
-                    n = points.GetNumberOfPoints()
-                    faces.InsertNextCell(len(ids), [i - 1 if i > 0 else n + i for i in ids])
-    surface = vtkPolyData()
-    surface.SetPoints(points)
-    surface.SetPolys(faces)
-    return surface
+    return ring_surface(rings, height)
 
 
 def checkerboard(size=512, checks=16):

@@ -1,5 +1,7 @@
-"""Helpers shared by the example scripts: an X display for rendering, PNG output."""
+"""Helpers shared by the example scripts: surfaces (generated, read), an X display for
+rendering, PNG output."""
 
+import math
 import os
 import shutil
 import sys
@@ -29,3 +31,99 @@ def save_png(window, path):
     writer.SetFileName(path)
     writer.SetInputConnection(grab.GetOutputPort())
     writer.Write()
+
+
+def ring_surface(rings, height):
+    """A height field over the unit disk, z = height(x, y), sampled on concentric rings of 6k
+    points (k = 1..rings, staggered ring to ring for better triangles) zipped into
+    counter-clockwise triangles."""
+    from vtkmodules.vtkCommonCore import vtkPoints
+    from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData
+
+    points = vtkPoints()
+    points.SetDataTypeToDouble()
+    polys = vtkCellArray()
+    points.InsertNextPoint(0.0, 0.0, height(0.0, 0.0))
+    inner, inner_start = [0], 0.0
+    for k in range(1, rings + 1):
+        count, radius = 6 * k, k / rings
+        start = (k % 2) * math.pi / count
+        outer = []
+        for j in range(count):
+            angle = start + 2.0 * math.pi * j / count
+            x, y = radius * math.cos(angle), radius * math.sin(angle)
+            outer.append(points.InsertNextPoint(x, y, height(x, y)))
+        ni, i, o = len(inner), 0, 0
+        while (ni > 1 and i < ni) or o < count:  # zip the two rings in order of angle
+            if o < count and (ni == 1 or i == ni or start + 2 * math.pi * (o + 1) / count
+                              < inner_start + 2 * math.pi * (i + 1) / ni):
+                polys.InsertNextCell(3, (inner[i % ni], outer[o], outer[(o + 1) % count]))
+                o += 1
+            else:
+                polys.InsertNextCell(3, (inner[i % ni], outer[o % count], inner[(i + 1) % ni]))
+                i += 1
+        inner, inner_start = outer, start
+    surface = vtkPolyData()
+    surface.SetPoints(points)
+    surface.SetPolys(polys)
+    return surface
+
+
+def read_surface(path):
+    """A triangle surface from any file VTK reads, or .off (VTK 9.2 has no OFF reader)."""
+    from vtkmodules.vtkCommonCore import vtkPoints
+    from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData
+    from vtkmodules.vtkFiltersCore import vtkTriangleFilter
+
+    extension = path.lower().rsplit(".", 1)[-1]
+    if extension == "off":
+        points, faces = vtkPoints(), vtkCellArray()
+        points.SetDataTypeToDouble()
+        with open(path) as f:
+            tokens = [t for line in f for t in line.split("#")[0].split()]
+        nv, nf = int(tokens[1]), int(tokens[2])
+        for v in range(nv):
+            points.InsertNextPoint(*(float(t) for t in tokens[4 + 3 * v:7 + 3 * v]))
+        p = 4 + 3 * nv
+        for _ in range(nf):
+            k = int(tokens[p])
+            faces.InsertNextCell(k, [int(t) for t in tokens[p + 1:p + 1 + k]])
+            p += 1 + k
+        surface = vtkPolyData()
+        surface.SetPoints(points)
+        surface.SetPolys(faces)
+        return surface
+    if extension == "obj":
+        # VTK's OBJ reader splits vertices at texture seams: read positions and faces directly.
+        points, faces = vtkPoints(), vtkCellArray()
+        points.SetDataTypeToDouble()
+        with open(path) as f:
+            for line in f:
+                if line.startswith("v "):
+                    points.InsertNextPoint(*(float(t) for t in line.split()[1:4]))
+                elif line.startswith("f "):
+                    ids = [int(t.split("/")[0]) for t in line.split()[1:]]
+                    n = points.GetNumberOfPoints()
+                    faces.InsertNextCell(len(ids), [i - 1 if i > 0 else n + i for i in ids])
+        surface = vtkPolyData()
+        surface.SetPoints(points)
+        surface.SetPolys(faces)
+        return surface
+    if extension == "vtp":
+        from vtkmodules.vtkIOXML import vtkXMLPolyDataReader as Reader
+    elif extension == "vtk":
+        from vtkmodules.vtkIOLegacy import vtkPolyDataReader as Reader
+    elif extension == "ply":
+        from vtkmodules.vtkIOPLY import vtkPLYReader as Reader
+    elif extension == "stl":
+        from vtkmodules.vtkIOGeometry import vtkSTLReader as Reader
+    else:
+        sys.exit(f"unknown surface format: {path} (.vtp, .vtk, .ply, .stl, .obj, .off)")
+    reader = Reader()
+    reader.SetFileName(path)
+    triangles = vtkTriangleFilter()  # polygons and strips -> triangles
+    triangles.SetInputConnection(reader.GetOutputPort())
+    triangles.PassVertsOff()
+    triangles.PassLinesOff()
+    triangles.Update()
+    return triangles.GetOutput()

@@ -24,7 +24,8 @@
  * the transport), `NumberOfSamples`, `MassCoefficientOfVariation`, `FlippedTriangles`,
  * `MeanAbsLogAreaRatio`, `MaximumAbsLogAreaRatio`, `MeanAngleDistortion`,
  * `MaximumAngleDistortion` (degrees), `MeanQuasiConformalDilatation`, the same figures of the
- * conformal map prefixed `Conformal` (e.g. `ConformalMeanAbsLogAreaRatio`), the composition's
+ * conformal map prefixed `Conformal` (e.g. `ConformalMeanAbsLogAreaRatio`), `DroppedSamples`
+ * (samples whose cell integrated to 0, left out of the transport), the composition's
  * `InterpolatedMeanAbsLogAreaRatio`, `InterpolatedFlippedTriangles`, `UntangledVertices`,
  * `CorrectionSweeps`, and `SecondsConformalMap`, `SecondsSampling`, `SecondsTransport`,
  * `SecondsComposition`, `SecondsTotal`.
@@ -49,6 +50,7 @@
 #include "vtkPolyDataAlgorithm.h"
 
 #include <string> // for the stage messages
+#include <vector> // for the stage messages
 
 class OTPARAMFILTERS_EXPORT vtkAreaPreservingParam : public vtkPolyDataAlgorithm
 {
@@ -169,6 +171,7 @@ private:
   // our abort passed on, and its errors and warnings collected (prefixed with `name`).
   bool RunStage(vtkAlgorithm* stage, const char* name, double start, double end);
   std::string StageError;
+  std::vector<std::string> StageWarnings;
 };
 
 #endif

@@ -424,7 +424,23 @@ public:
   {
     for (int v : boundaryLoop)
     {
-      this->OnBoundary[v] = 1;
+      this->OnBoundary[v] = Pinned;
+    }
+    // Boundary vertices carry the transport's own boundary map (T takes the circle onto the
+    // circle), which converges to the exact one; only the corners of ears (triangles with
+    // three boundary vertices, whose area no interior vertex can change) slide along the
+    // circle, and when polishing, vertices with a triangle still off by more than 5%.
+    // Measured on hemisphere_2k: sliding every boundary vertex takes the largest distance to
+    // Lambert's projection from 0.006 to 0.008-0.011 for 10% less area error.
+    for (const Triangle& t : surface.triangles)
+    {
+      if (this->OnBoundary[t[0]] && this->OnBoundary[t[1]] && this->OnBoundary[t[2]])
+      {
+        for (int v : t)
+        {
+          this->OnBoundary[v] = Sliding;
+        }
+      }
     }
     // Greedy colouring: vertices of one colour share no triangle, so they move in parallel
     // with exactly the result of a sequential sweep in colour order.
@@ -463,6 +479,7 @@ public:
   void polishFrom(double settled)
   {
     this->SettledLogRatio = settled;
+    this->Polishing = true;
     std::fill(this->Active.begin(), this->Active.end(), 1);
   }
 
@@ -485,7 +502,9 @@ public:
         const int v = vertices[k];
         if (this->Active[v])
         {
-          moved[v] = this->OnBoundary[v] ? this->moveOnCircle(v, uv) : this->moveInPlane(v, uv);
+          moved[v] = this->OnBoundary[v] == Sliding ? this->moveOnCircle(v, uv)
+            : this->OnBoundary[v] == Pinned       ? this->Polishing && this->moveOnCircle(v, uv)
+                                                  : this->moveInPlane(v, uv);
         }
       }
     }
@@ -510,12 +529,13 @@ public:
 private:
   static constexpr double Overrelaxation = 1.8; // measured: 1.0 needs twice the sweeps
   double SettledLogRatio = 1e-3;
-  // Boundary vertices carry the transport's own boundary map (T takes the circle onto the
-  // circle), which converges to the exact one; they slide only to repair triangles that are
-  // off by more than this (ears: triangles with three boundary vertices, which no interior
-  // vertex can fix). Measured on hemisphere_2k: sliding at 1e-3 doubles the distance to
-  // Lambert's projection for 10% less area error.
-  static constexpr double SettledLogRatioOnCircle = 0.05;
+  bool Polishing = false;
+  enum : char
+  {
+    Interior = 0,
+    Pinned = 1,
+    Sliding = 2
+  };
 
   // Energy of the star of v with v at p; +infinity if a triangle would not be positive.
   double starEnergy(int v, Vec2 p, const std::vector<Vec2>& uv) const
@@ -595,7 +615,7 @@ private:
       first += target * residual * slope;
       second += target * slope * slope;
     }
-    if (worst < std::max(SettledLogRatioOnCircle, this->SettledLogRatio) || !(second > 0.0))
+    if (worst < this->SettledLogRatio || !(second > 0.0))
     {
       return false;
     }

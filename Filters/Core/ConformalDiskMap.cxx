@@ -745,7 +745,13 @@ ConformalDiskMapResult computeConformalDiskMap(const SurfaceMesh& mesh,
   {
     return result;
   }
-  ConformalDiskMapResult intrinsic = computeWithLaplacian(mesh, boundaryLoop, options, true);
+  ConformalDiskMapOptions again = options;
+  if (options.progress)
+  {
+    // Progress already reached 1: the second solve only checks for an abort.
+    again.progress = [&options](double) { return options.progress(1.0); };
+  }
+  ConformalDiskMapResult intrinsic = computeWithLaplacian(mesh, boundaryLoop, again, true);
   if (intrinsic.aborted || (intrinsic.error.empty() &&
         foldedTriangles(mesh, intrinsic.uv) < result.foldedWithMeshLaplacian))
   {

@@ -221,6 +221,40 @@ converged = servermanager.Fetch(chained).GetFieldData().GetArray("Converged")
 check(converged is not None and converged.GetValue(0) == 1,
       "the OT solver converges on the sampler's output")
 
+# ---- Area-Preserving Parameterization of a bumpy plane: all three ports, the figures.
+check("AreaPreservingParameterization" in globals(),
+      "LoadPlugin defines AreaPreservingParameterization")
+bumps = Calculator(Input=Triangulate(Input=Plane(XResolution=30, YResolution=30)))
+bumps.CoordinateResults = 1
+bumps.Function = "coordsX*iHat + coordsY*jHat + 0.4*exp(-20*((coordsX-0.1)^2+coordsY^2))*kHat"
+param = AreaPreservingParameterization(Input=bumps)
+check(param.SMProxy.GetXMLLabel() == "Area-Preserving Parameterization",
+      "label 'Area-Preserving Parameterization'")
+hints = param.SMProxy.GetHints()
+menu = hints.FindNestedElementByName("ShowInMenu") if hints else None
+check(menu is not None and menu.GetAttribute("category") == "Optimal Transport",
+      "Area-Preserving Parameterization is in the menu category 'Optimal Transport'")
+check(param.NumberOfSamples == 5000 and param.Tolerance == 1e-10 and param.AreaCorrection == 1,
+      "pass-through defaults: NumberOfSamples 5000, Tolerance 1e-10, AreaCorrection on")
+param.NumberOfSamples = 1500
+param.UpdatePipeline()
+surface = servermanager.Fetch(param, idx=0)
+flat = servermanager.Fetch(param, idx=1)
+table = servermanager.Fetch(param, idx=2)
+fd = surface.GetFieldData()
+check(surface.GetNumberOfPoints() == 31 * 31 and flat.GetNumberOfPoints() == 31 * 31,
+      "every point on ports 0 and 1")
+check(fd.GetArray("Converged").GetValue(0) == 1 and fd.GetArray("FlippedTriangles").GetValue(0) == 0,
+      "converged, no flipped triangle")
+check(fd.GetArray("MeanAbsLogAreaRatio").GetValue(0) <= 0.03,
+      f"area-preserving: mean |log area ratio| {fd.GetArray('MeanAbsLogAreaRatio').GetValue(0):.4f}")
+tcoords = surface.GetPointData().GetTCoords()
+check(tcoords is not None and tcoords.GetName() == "AreaPreservingCoordinates",
+      "texture coordinates AreaPreservingCoordinates")
+check(table.IsA("vtkTable") and table.GetNumberOfRows() == 50
+      and table.GetColumnByName("AreaPreservingLogAreaRatio") is not None,
+      "port 2: the histogram table")
+
 if os.environ.get("OTPARAM_SCREENSHOT") == "1":
     # The GUI only renders views that sit in a layout: use (or create) the active one.
     view = GetActiveViewOrCreate("RenderView")
