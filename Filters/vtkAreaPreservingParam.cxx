@@ -402,6 +402,36 @@ int vtkAreaPreservingParam::RequestData(
     samples[i] = { p[0], p[1] };
     images[i] = { c[0], c[1] };
   }
+  {
+    // Samples on the circle: the middle of their cell's arc of the circle (port 1 of the
+    // transport: clipped cells, arcs sampled, cell array DiracId).
+    vtkPolyData* cells = transport->GetOutput(1);
+    vtkDataArray* diracId = cells->GetCellData()->GetArray("DiracId");
+    vtkNew<vtkIdList> ids;
+    std::vector<otparam::Vec2> polygon;
+    for (vtkIdType c = 0; diracId && c < cells->GetNumberOfCells(); ++c)
+    {
+      const auto i = static_cast<vtkIdType>(diracId->GetComponent(c, 0));
+      if (i < 0 || i >= numberOfSamples ||
+        std::abs(std::hypot(samples[i].x, samples[i].y) - 1.0) > 1e-9)
+      {
+        continue;
+      }
+      cells->GetCellPoints(c, ids);
+      polygon.clear();
+      for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k)
+      {
+        double p[3];
+        cells->GetPoint(ids->GetId(k), p);
+        polygon.push_back({ p[0], p[1] });
+      }
+      const otparam::Vec2 middle = otparam::boundaryArcMidpoint(polygon);
+      if (std::isfinite(middle.x))
+      {
+        images[i] = middle;
+      }
+    }
+  }
   std::vector<int> loop;
   otparam::CompositionResult composed;
   otparam::DistortionFigures figures;

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 namespace otparam
@@ -649,6 +650,50 @@ private:
 };
 
 } // namespace
+
+Vec2 boundaryArcMidpoint(const std::vector<Vec2>& cell)
+{
+  const size_t n = cell.size();
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  size_t start = n;
+  for (size_t k = 0; k < n; ++k)
+  {
+    if (!onCircle(cell[k]) && onCircle(cell[(k + 1) % n]))
+    {
+      start = (k + 1) % n; // a run begins here
+      break;
+    }
+  }
+  if (start == n)
+  {
+    return { nan, nan }; // no vertex on the circle, or all of them (the cell is the disk)
+  }
+  double bestSpan = -1.0, bestMiddle = 0.0;
+  for (size_t step = 0; step < n;)
+  {
+    size_t k = (start + step) % n;
+    if (!onCircle(cell[k]))
+    {
+      ++step;
+      continue;
+    }
+    const double first = std::atan2(cell[k].y, cell[k].x);
+    double span = 0.0;
+    while (step + 1 < n && onCircle(cell[(start + step + 1) % n]))
+    {
+      const Vec2 a = cell[(start + step) % n], b = cell[(start + step + 1) % n];
+      span += std::atan2(cross(a, b), dot(a, b));
+      ++step;
+    }
+    ++step;
+    if (std::abs(span) > bestSpan)
+    {
+      bestSpan = std::abs(span);
+      bestMiddle = first + 0.5 * span;
+    }
+  }
+  return { std::cos(bestMiddle), std::sin(bestMiddle) };
+}
 
 CompositionResult composeWithInverseTransport(const SurfaceMesh& surface,
   const std::vector<Vec2>& conformalUv, const std::vector<int>& boundaryLoop,

@@ -62,10 +62,18 @@ struct CompositionResult
   double secondsCorrection = 0.0;
 };
 
+// The middle of the longest run of a clipped power cell's boundary (closed polygon, arcs of
+// the unit circle sampled) lying on the unit circle; {NaN, NaN} when none does. For a sample
+// on the circle this is a better T^-1 than its cell's centroid: T maps that arc onto the
+// sample, and the arc's middle is off the exact preimage by O(h^2), where the centroid's
+// direction is off by O(h) when the cell leans to one side.
+Vec2 boundaryArcMidpoint(const std::vector<Vec2>& cell);
+
 // `conformalUv`: the conformal disk image of `surface` (boundary on the unit circle,
 // triangles positively oriented); `boundaryLoop` its boundary vertices in order.
-// `samples`: the Dirac positions y_i in the conformal disk; `sampleImages`: the centroids of
-// their power cells from the converged transport.
+// `samples`: the Dirac positions y_i in the conformal disk; `sampleImages`: their T^-1, the
+// centroids of their power cells from the converged transport (for samples on the circle,
+// better boundaryArcMidpoint; images of those are put on the circle in any case).
 CompositionResult composeWithInverseTransport(const SurfaceMesh& surface,
   const std::vector<Vec2>& conformalUv, const std::vector<int>& boundaryLoop,
   const std::vector<Vec2>& samples, const std::vector<Vec2>& sampleImages,

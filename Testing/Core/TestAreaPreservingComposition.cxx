@@ -135,3 +135,24 @@ TEST(AreaPreservingComposition, RejectsMismatchedInputsAndHonoursAbort)
     composeWithInverseTransport(surface, mesh.points, loop, mesh.points, mesh.points, options);
   EXPECT_TRUE(aborted.aborted);
 }
+
+TEST(AreaPreservingComposition, BoundaryArcMidpoint)
+{
+  auto cellWithArc = [](double from, double to) {
+    std::vector<Vec2> cell = { { 0.5 * std::cos(0.5 * (from + to)),
+      0.5 * std::sin(0.5 * (from + to)) } };
+    for (int k = 0; k <= 8; ++k)
+    {
+      const double angle = from + (to - from) * k / 8.0;
+      cell.push_back({ std::cos(angle), std::sin(angle) });
+    }
+    return cell;
+  };
+  Vec2 middle = boundaryArcMidpoint(cellWithArc(0.2, 0.6));
+  EXPECT_NEAR(middle.x, std::cos(0.4), 1e-14);
+  EXPECT_NEAR(middle.y, std::sin(0.4), 1e-14);
+  middle = boundaryArcMidpoint(cellWithArc(3.0, 3.4)); // across the +-pi cut
+  EXPECT_NEAR(middle.x, std::cos(3.2), 1e-14);
+  EXPECT_NEAR(middle.y, std::sin(3.2), 1e-14);
+  EXPECT_TRUE(std::isnan(boundaryArcMidpoint({ { 0.0, 0.0 }, { 0.5, 0.0 }, { 0.0, 0.5 } }).x));
+}
