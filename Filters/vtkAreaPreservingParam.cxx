@@ -314,8 +314,9 @@ int vtkAreaPreservingParam::RequestData(
   const double secondsSampling = Seconds(stamp);
   stamp = std::chrono::steady_clock::now();
   // Samples whose Voronoi cell integrates to 0 carry no mass: the transport is the same
-  // without them, and the solver rejects zero masses. (The sampler makes them where cells are
-  // ~1e-7 wide at densities of ~1e10, at the finger tips of coarse hands: hand_stein_810.)
+  // without them, and the solver rejects zero masses. (A conformal factor is positive, so this
+  // is a safety net: it caught cells ~1e-7 wide at a coarse hand's finger tips, density 1e10,
+  // whose rounding-noise edges once made the integral 0.)
   vtkNew<vtkPolyData> massiveSamples;
   int droppedSamples = 0;
   if (sampled)

@@ -403,10 +403,11 @@ public:
     usableEdges.clear();
     for (size_t k = 0; k < n; ++k)
     {
-      // Two cell vertices that are one point up to rounding (measured: 1e-14 apart) make an
-      // edge with no usable direction that put every triangle outside. Leaving it out moves
-      // the boundary by O(its length^2): nothing at this size.
-      if (norm(cell.vertices[(k + 1) % n] - cell.vertices[k]) > 1e-7 * cellSize)
+      // Two cell vertices that are one point up to rounding make an edge with no usable
+      // direction that puts every triangle outside (measured: 1e-14 apart in a cell of 1e-7,
+      // and 7e-14 apart in a cell of 4e-7 at a hand's finger tip, density 1e10). Leaving an
+      // edge shorter than 1e-6 of the cell out changes its area by O(1e-12) relatively.
+      if (norm(cell.vertices[(k + 1) % n] - cell.vertices[k]) > 1e-6 * cellSize)
       {
         usableEdges.push_back(k);
       }

@@ -135,6 +135,37 @@ TEST(TriangulatedSource, CellWithTwoVerticesOneUpToRounding)
   EXPECT_NEAR(out.mass, 0.18 * h * h, 1e-9 * h * h);
 }
 
+TEST(TriangulatedSource, FingerTipCellWithRoundingEdge)
+{
+  // A Voronoi cell of a sample at a finger tip of hand_stein_810's conformal image (density
+  // 1.4e10, cell 4e-7 across), vertices as the power diagram computed them: the third and the
+  // fourth are one point up to rounding (7e-14 apart, 1.9e-7 of the cell). Its mass came out 0.
+  const std::vector<Vec2> cellVertices = { { -0.02036911175249553, -0.0099194702727914003 },
+    { -0.020369118840983903, -0.00991930043289517 },
+    { -0.020369378718527769, -0.0099192650985339519 },
+    { -0.020369378718475203, -0.0099192650984860839 },
+    { -0.020369367781866647, -0.0099195271391871523 } };
+  const Vec2 c = cellVertices[0];
+  double area = 0.0; // relative to a vertex: absolute coordinates would cancel to 1e-6
+  for (size_t k = 0; k < cellVertices.size(); ++k)
+  {
+    area += 0.5 * cross(cellVertices[k] - c, cellVertices[(k + 1) % cellVertices.size()] - c);
+  }
+  // A density triangle 1e-5 across around it, density 1.
+  std::string error;
+  auto src = makeTriangulatedSource({ { c.x - 1e-5, c.y - 1e-5 }, { c.x + 1e-5, c.y - 1e-5 },
+                                      { c.x, c.y + 1e-5 } },
+    { { 0, 1, 2 } }, {}, error);
+  ASSERT_TRUE(src) << error;
+  PowerCell cell;
+  cell.vertices = cellVertices;
+  cell.neighbor = { 1, 2, 3, 4, 5 };
+  CellIntegrals out;
+  out.wantEdgeMass = false;
+  src->integrate(cell, out);
+  EXPECT_NEAR(out.mass, std::abs(area), 1e-9 * std::abs(area));
+}
+
 TEST(TriangulatedSource, RejectsBadDomains)
 {
   std::string error;
