@@ -126,10 +126,14 @@ def new_window(width, height):
 
 
 def render_to_png(window, path):
+    """Renders off screen; writes the PNG unless path is None (regression tests compare the
+    window instead). Returns the window."""
     window.SetOffScreenRendering(1)
     window.Render()
-    save_png(window, path)
-    print("wrote", path)
+    if path is not None:
+        save_png(window, path)
+        print("wrote", path)
+    return window
 
 
 def diverging_colors(bound):
@@ -211,7 +215,7 @@ def render_density_and_samples(conformal_image, samples, path, size):
     top_view(renderer)
     renderer.GetActiveCamera().SetPosition(0.15, 0.0, 5.0)
     renderer.GetActiveCamera().SetFocalPoint(0.15, 0.0, 0.0)
-    render_to_png(window, path)
+    return render_to_png(window, path)
 
 
 def render_brenier_legendre(transport, path, size):
@@ -246,7 +250,7 @@ def render_brenier_legendre(transport, path, size):
         renderer.ResetCamera()
         camera.Zoom(1.3)
         window.AddRenderer(renderer)
-    render_to_png(window, path)
+    return render_to_png(window, path)
 
 
 def circle_image(size=1024, per_row=16):
@@ -331,7 +335,7 @@ def render_circle_texture(surface, path, size):
         renderer.ResetCamera()
         camera.Zoom(1.3)
         window.AddRenderer(renderer)
-    render_to_png(window, path)
+    return render_to_png(window, path)
 
 
 def render_histograms(table, path, size):
@@ -369,7 +373,7 @@ def render_histograms(table, path, size):
         bars.SetColor(40, 70, 150, 255)
         chart.GetAxis(vtkAxis.LEFT).SetTitle("triangles")
         chart.GetAxis(vtkAxis.BOTTOM).SetTitle("")
-    render_to_png(window, path)
+    return render_to_png(window, path)
 
 
 def write_figures(param, conformal, sampler, transport, directory, size):
