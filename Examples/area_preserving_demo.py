@@ -32,7 +32,8 @@ import os
 import sys
 import time
 
-from otparam_example_utils import ensure_display, read_surface, ring_surface, save_png
+from otparam_example_utils import (density_disk_actors, ensure_display, read_surface,
+                                   ring_surface, save_png)
 
 STAGE_OUTPUTS = ["conformal_image", "samples", "power_diagram", "brenier_potential",
                  "legendre_dual"]
@@ -136,31 +137,6 @@ def render_to_png(window, path):
     return window
 
 
-def diverging_colors(bound):
-    from vtkmodules.vtkRenderingCore import vtkColorTransferFunction
-    colors = vtkColorTransferFunction()
-    colors.AddRGBPoint(-bound, 0.23, 0.30, 0.75)
-    colors.AddRGBPoint(0.0, 0.87, 0.87, 0.87)
-    colors.AddRGBPoint(bound, 0.71, 0.02, 0.15)
-    return colors
-
-
-def scalar_bar(colors, title):
-    from vtkmodules.vtkRenderingAnnotation import vtkScalarBarActor
-    bar = vtkScalarBarActor()
-    bar.SetLookupTable(colors)
-    bar.SetTitle(title)
-    bar.SetNumberOfLabels(5)
-    bar.SetPosition(0.86, 0.1)
-    bar.SetWidth(0.12)
-    bar.SetHeight(0.8)
-    for prop in (bar.GetTitleTextProperty(), bar.GetLabelTextProperty()):
-        prop.SetColor(0.1, 0.1, 0.1)
-        prop.ShadowOff()
-        prop.ItalicOff()
-    return bar
-
-
 def top_view(renderer, scale=1.1):
     camera = renderer.GetActiveCamera()
     camera.SetPosition(0.0, 0.0, 5.0)
@@ -173,29 +149,10 @@ def top_view(renderer, scale=1.1):
 
 def render_density_and_samples(conformal_image, samples, path, size):
     """The conformal image coloured per triangle by log10 AreaDensity, samples as dots."""
-    from vtkmodules.vtkCommonCore import vtkDoubleArray
-    from vtkmodules.vtkCommonDataModel import vtkPolyData
     from vtkmodules.vtkFiltersGeneral import vtkVertexGlyphFilter
     from vtkmodules.vtkRenderingCore import vtkActor, vtkPolyDataMapper, vtkRenderer
 
-    density = conformal_image.GetCellData().GetArray("AreaDensity")
-    log_density = vtkDoubleArray()
-    log_density.SetName("log10 AreaDensity")
-    for t in range(density.GetNumberOfTuples()):
-        log_density.InsertNextValue(math.log10(max(density.GetValue(t), 1e-300)))
-    colored = vtkPolyData()
-    colored.SetPoints(conformal_image.GetPoints())
-    colored.SetPolys(conformal_image.GetPolys())
-    colored.GetCellData().SetScalars(log_density)
-    low, high = log_density.GetRange()
-    colors = diverging_colors(max(abs(low), abs(high), 1e-3))
-    mapper = vtkPolyDataMapper()
-    mapper.SetInputData(colored)
-    mapper.SetScalarModeToUseCellData()
-    mapper.SetLookupTable(colors)
-    mapper.UseLookupTableScalarRangeOn()
-    disk = vtkActor()
-    disk.SetMapper(mapper)
+    disk, bar = density_disk_actors(conformal_image)
     dots = vtkVertexGlyphFilter()
     dots.SetInputData(samples)
     dots_mapper = vtkPolyDataMapper()
@@ -209,7 +166,7 @@ def render_density_and_samples(conformal_image, samples, path, size):
     renderer.SetBackground(1.0, 1.0, 1.0)
     renderer.AddActor(disk)
     renderer.AddActor(dots_actor)
-    renderer.AddActor2D(scalar_bar(colors, "log10 AreaDensity"))
+    renderer.AddActor2D(bar)
     window = new_window(size, size)
     window.AddRenderer(renderer)
     top_view(renderer)

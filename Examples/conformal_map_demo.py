@@ -18,7 +18,8 @@ import math
 import os
 import sys
 
-from otparam_example_utils import ensure_display, read_surface, ring_surface, save_png
+from otparam_example_utils import (density_disk_actors, ensure_display, read_surface,
+                                   ring_surface, save_png)
 from vtkmodules.vtkCommonCore import vtkDoubleArray, vtkUnsignedCharArray
 from vtkmodules.vtkCommonDataModel import vtkImageData, vtkPolyData
 
@@ -56,9 +57,8 @@ def render(surface, disk, size=1200, elevation=-50.0):
     (right). Returns the vtkRenderWindow (rendered, deterministic: fixed size and cameras, no
     multisampling)."""
     from vtkmodules.vtkFiltersCore import vtkPolyDataNormals
-    from vtkmodules.vtkRenderingAnnotation import vtkScalarBarActor
-    from vtkmodules.vtkRenderingCore import (vtkActor, vtkColorTransferFunction, vtkPolyDataMapper,
-                                             vtkRenderer, vtkRenderWindow, vtkTexture)
+    from vtkmodules.vtkRenderingCore import (vtkActor, vtkPolyDataMapper, vtkRenderer,
+                                             vtkRenderWindow, vtkTexture)
     import vtkmodules.vtkRenderingOpenGL2  # noqa: F401  (the OpenGL backend)
 
     # Left: the surface with checkerboard texture coordinates (u, v) mapped to [0, 1]^2.
@@ -90,39 +90,7 @@ def render(surface, disk, size=1200, elevation=-50.0):
     left.AddActor(surface_actor)
 
     # Right: the disk coloured per triangle by log10 of the exact area ratio.
-    density = disk.GetCellData().GetArray("AreaDensity")
-    log_density = vtkDoubleArray()
-    log_density.SetName("log10 AreaDensity")
-    for t in range(density.GetNumberOfTuples()):
-        log_density.InsertNextValue(math.log10(density.GetValue(t)))
-    colored = vtkPolyData()
-    colored.SetPoints(disk.GetPoints())
-    colored.SetPolys(disk.GetPolys())
-    colored.GetCellData().SetScalars(log_density)
-    low, high = log_density.GetRange()
-    colors = vtkColorTransferFunction()  # a blue - white - red diverging map around 0
-    bound = max(abs(low), abs(high), 1e-3)
-    colors.AddRGBPoint(-bound, 0.23, 0.30, 0.75)
-    colors.AddRGBPoint(0.0, 0.87, 0.87, 0.87)
-    colors.AddRGBPoint(bound, 0.71, 0.02, 0.15)
-    disk_mapper = vtkPolyDataMapper()
-    disk_mapper.SetInputData(colored)
-    disk_mapper.SetScalarModeToUseCellData()
-    disk_mapper.SetLookupTable(colors)
-    disk_mapper.UseLookupTableScalarRangeOn()
-    disk_actor = vtkActor()
-    disk_actor.SetMapper(disk_mapper)
-    bar = vtkScalarBarActor()
-    bar.SetLookupTable(colors)
-    bar.SetTitle("log10 AreaDensity")
-    bar.SetNumberOfLabels(5)
-    bar.SetPosition(0.86, 0.1)
-    bar.SetWidth(0.12)
-    bar.SetHeight(0.8)
-    for prop in (bar.GetTitleTextProperty(), bar.GetLabelTextProperty()):
-        prop.SetColor(0.1, 0.1, 0.1)
-        prop.ShadowOff()
-        prop.ItalicOff()
+    disk_actor, bar = density_disk_actors(disk)
     right = vtkRenderer()
     right.SetViewport(0.5, 0.0, 1.0, 1.0)
     right.SetBackground(1.0, 1.0, 1.0)

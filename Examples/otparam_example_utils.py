@@ -127,3 +127,47 @@ def read_surface(path):
     triangles.PassLinesOff()
     triangles.Update()
     return triangles.GetOutput()
+
+
+def density_disk_actors(disk):
+    """The disk image coloured per triangle by log10 of its AreaDensity cell array (a blue -
+    white - red map symmetric around 0) and the matching scalar bar: (actor, bar)."""
+    from vtkmodules.vtkCommonCore import vtkDoubleArray
+    from vtkmodules.vtkCommonDataModel import vtkPolyData
+    from vtkmodules.vtkRenderingAnnotation import vtkScalarBarActor
+    from vtkmodules.vtkRenderingCore import vtkActor, vtkColorTransferFunction, vtkPolyDataMapper
+
+    density = disk.GetCellData().GetArray("AreaDensity")
+    log_density = vtkDoubleArray()
+    log_density.SetName("log10 AreaDensity")
+    for t in range(density.GetNumberOfTuples()):
+        log_density.InsertNextValue(math.log10(max(density.GetValue(t), 1e-300)))
+    colored = vtkPolyData()
+    colored.SetPoints(disk.GetPoints())
+    colored.SetPolys(disk.GetPolys())
+    colored.GetCellData().SetScalars(log_density)
+    low, high = log_density.GetRange()
+    colors = vtkColorTransferFunction()
+    bound = max(abs(low), abs(high), 1e-3)
+    colors.AddRGBPoint(-bound, 0.23, 0.30, 0.75)
+    colors.AddRGBPoint(0.0, 0.87, 0.87, 0.87)
+    colors.AddRGBPoint(bound, 0.71, 0.02, 0.15)
+    mapper = vtkPolyDataMapper()
+    mapper.SetInputData(colored)
+    mapper.SetScalarModeToUseCellData()
+    mapper.SetLookupTable(colors)
+    mapper.UseLookupTableScalarRangeOn()
+    actor = vtkActor()
+    actor.SetMapper(mapper)
+    bar = vtkScalarBarActor()
+    bar.SetLookupTable(colors)
+    bar.SetTitle("log10 AreaDensity")
+    bar.SetNumberOfLabels(5)
+    bar.SetPosition(0.86, 0.1)
+    bar.SetWidth(0.12)
+    bar.SetHeight(0.8)
+    for prop in (bar.GetTitleTextProperty(), bar.GetLabelTextProperty()):
+        prop.SetColor(0.1, 0.1, 0.1)
+        prop.ShadowOff()
+        prop.ItalicOff()
+    return actor, bar
