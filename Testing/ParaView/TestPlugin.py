@@ -1,6 +1,8 @@
 """Loads OTParam.so into ParaView and runs its filters: Semi-Discrete OT Solver on Diracs read
 from a .vtp, Conformal Disk Map on a triangulated ParaView Plane, Adaptive Density Sampler on
-a triangulated disk read from a .vtp (and the OT solver on its samples).
+a triangulated disk read from a .vtp (and the OT solver on its samples), Area-Preserving
+Parameterization on a bumpy plane (all three ports) and on a closed sphere (its error in the
+output window, empty outputs, the filter usable again).
 
 Usage: pvpython|pvbatch TestPlugin.py <OTParam.so> <work dir>
 In the GUI (paraview --script=...), the same arguments come from the environment variables
@@ -254,6 +256,35 @@ check(tcoords is not None and tcoords.GetName() == "AreaPreservingCoordinates",
 check(table.IsA("vtkTable") and table.GetNumberOfRows() == 50
       and table.GetColumnByName("AreaPreservingLogAreaRatio") is not None,
       "port 2: the histogram table")
+
+# ---- Bad input in a ParaView pipeline: a closed surface. The filter's error reaches the
+# output window (ParaView's Output Messages), the outputs stay empty, and the same filter
+# works once it gets a disk-like surface.
+from vtkmodules.vtkCommonCore import vtkCommand, vtkOutputWindow  # noqa: E402
+messages = []
+output_window = vtkOutputWindow.GetInstance()
+
+
+def record_error(obj, event, text):
+    messages.append(text)
+
+
+record_error.CallDataType = "string0"  # Python observers get the text only when typed
+observer = output_window.AddObserver(vtkCommand.ErrorEvent, record_error)
+closed = Triangulate(Input=Sphere(ThetaResolution=16, PhiResolution=12))
+broken = AreaPreservingParameterization(Input=closed)
+broken.NumberOfSamples = 500
+broken.UpdatePipeline()
+check(servermanager.Fetch(broken, idx=0).GetNumberOfPoints() == 0
+      and servermanager.Fetch(broken, idx=2).GetNumberOfRows() == 0,
+      "closed surface: the outputs stay empty")
+check(any("conformal map:" in m and "closed" in m for m in messages),
+      f"closed surface: the filter's error reaches the output window ({messages[:1]})")
+broken.Input = bumps
+broken.UpdatePipeline()
+check(servermanager.Fetch(broken, idx=0).GetNumberOfPoints() == 31 * 31,
+      "the same filter works once given a disk-like surface")
+output_window.RemoveObserver(observer)
 
 if os.environ.get("OTPARAM_SCREENSHOT") == "1":
     # The GUI only renders views that sit in a layout: use (or create) the active one.
