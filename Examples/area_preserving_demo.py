@@ -32,8 +32,8 @@ import os
 import sys
 import time
 
-from otparam_example_utils import (density_disk_actors, ensure_display, read_surface,
-                                   ring_surface, save_png)
+from otparam_example_utils import (circle_image, density_disk_actors, ensure_display,
+                                   read_surface, ring_surface, save_png)
 
 STAGE_OUTPUTS = ["conformal_image", "samples", "power_diagram", "brenier_potential",
                  "legendre_dual"]
@@ -208,32 +208,6 @@ def render_brenier_legendre(transport, path, size):
         camera.Zoom(1.3)
         window.AddRenderer(renderer)
     return render_to_png(window, path)
-
-
-def circle_image(size=1024, per_row=16):
-    """Dark disks on a hexagonal grid over white: through a map, their shapes show its
-    distortion (circles stay circles through a conformal map, equal areas through an
-    area-preserving one)."""
-    from vtkmodules.vtkCommonCore import vtkUnsignedCharArray
-    from vtkmodules.vtkCommonDataModel import vtkImageData
-    image = vtkImageData()
-    image.SetDimensions(size, size, 1)
-    colors = vtkUnsignedCharArray()
-    colors.SetNumberOfComponents(3)
-    colors.SetNumberOfTuples(size * size)
-    spacing = size / per_row
-    radius2 = (0.36 * spacing) ** 2
-    row_height = spacing * math.sqrt(3) / 2
-    for j in range(size):
-        row = round(j / row_height)
-        cy = row * row_height
-        shift = 0.5 * spacing * (row % 2)
-        for i in range(size):
-            cx = round((i - shift) / spacing) * spacing + shift
-            inside = (i - cx) ** 2 + (j - cy) ** 2 <= radius2
-            colors.SetTuple3(j * size + i, *((40, 70, 150) if inside else (245, 245, 245)))
-    image.GetPointData().SetScalars(colors)
-    return image
 
 
 def render_circle_texture(surface, path, size):

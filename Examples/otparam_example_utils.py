@@ -171,3 +171,29 @@ def density_disk_actors(disk):
         prop.ShadowOff()
         prop.ItalicOff()
     return actor, bar
+
+
+def circle_image(size=1024, per_row=16):
+    """Dark disks on a hexagonal grid over white: through a map, their shapes show its
+    distortion (circles stay circles through a conformal map, equal areas through an
+    area-preserving one)."""
+    from vtkmodules.vtkCommonCore import vtkUnsignedCharArray
+    from vtkmodules.vtkCommonDataModel import vtkImageData
+    image = vtkImageData()
+    image.SetDimensions(size, size, 1)
+    colors = vtkUnsignedCharArray()
+    colors.SetNumberOfComponents(3)
+    colors.SetNumberOfTuples(size * size)
+    spacing = size / per_row
+    radius2 = (0.36 * spacing) ** 2
+    row_height = spacing * math.sqrt(3) / 2
+    for j in range(size):
+        row = round(j / row_height)
+        cy = row * row_height
+        shift = 0.5 * spacing * (row % 2)
+        for i in range(size):
+            cx = round((i - shift) / spacing) * spacing + shift
+            inside = (i - cx) ** 2 + (j - cy) ** 2 <= radius2
+            colors.SetTuple3(j * size + i, *((40, 70, 150) if inside else (245, 245, 245)))
+    image.GetPointData().SetScalars(colors)
+    return image

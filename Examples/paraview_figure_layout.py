@@ -4,8 +4,8 @@ the transport's power diagram, and the Brenier potential in 3D, side by side in 
 plus the distortion histograms in a bar chart. Saves the layout as a PNG.
 
     pvpython Examples/paraview_figure_layout.py OTParam.so SURFACE.obj [OUTPUT.png]
-    paraview --script=Examples/paraview_figure_layout.py    (arguments from the environment:
-        OTPARAM_PLUGIN, OTPARAM_SURFACE, OTPARAM_OUTPUT)
+    paraview --script=Examples/paraview_figure_layout.py    (from the repository's root;
+        arguments from the environment: OTPARAM_PLUGIN, OTPARAM_SURFACE, OTPARAM_OUTPUT)
 
 SURFACE is a disk-like triangle surface ParaView reads (.obj, .vtp, .ply, .stl, ...), e.g.
 ../shared/data/meshes/face_choi_bff_17k.obj. In the GUI the views stay open to explore.
@@ -25,30 +25,17 @@ else:
 LoadPlugin(plugin, ns=globals())
 
 
-def circle_texture(path, size=512, per_row=16):
-    """Writes dark disks on a hexagonal grid as a PNG (the texture ParaView maps)."""
-    import math
-    from vtkmodules.vtkCommonCore import vtkUnsignedCharArray
-    from vtkmodules.vtkCommonDataModel import vtkImageData
+def circle_texture(path):
+    """Writes the examples' circle image (otparam_example_utils.circle_image) as a PNG."""
+    # paraview --script may not set __file__: then run it from the repository's root.
+    here = (os.path.dirname(os.path.abspath(__file__)) if "__file__" in globals()
+            else os.path.join(os.getcwd(), "Examples"))
+    sys.path.insert(0, here)
+    from otparam_example_utils import circle_image
     from vtkmodules.vtkIOImage import vtkPNGWriter
-    image = vtkImageData()
-    image.SetDimensions(size, size, 1)
-    colors = vtkUnsignedCharArray()
-    colors.SetNumberOfComponents(3)
-    colors.SetNumberOfTuples(size * size)
-    spacing = size / per_row
-    row_height = spacing * math.sqrt(3) / 2
-    for j in range(size):
-        row = round(j / row_height)
-        shift = 0.5 * spacing * (row % 2)
-        for i in range(size):
-            cx = round((i - shift) / spacing) * spacing + shift
-            inside = (i - cx) ** 2 + (j - row * row_height) ** 2 <= (0.36 * spacing) ** 2
-            colors.SetTuple3(j * size + i, *((40, 70, 150) if inside else (245, 245, 245)))
-    image.GetPointData().SetScalars(colors)
     writer = vtkPNGWriter()
     writer.SetFileName(path)
-    writer.SetInputData(image)
+    writer.SetInputData(circle_image(512))
     writer.Write()
 
 
