@@ -7,7 +7,10 @@ output window, empty outputs, the filter usable again).
 Usage: pvpython|pvbatch TestPlugin.py <OTParam.so> <work dir>
 In the GUI (paraview --script=...), the same arguments come from the environment variables
 OTPARAM_PLUGIN and OTPARAM_TEST_DIR; with OTPARAM_SCREENSHOT=1 it also renders the power
-diagram. Writes <work dir>/PASSED when every check passed.
+diagram, the area-preserving texture on a shared face (compared with a baseline from
+OTPARAM_BASELINE_DIR; the mesh from OTPARAM_SHARED_DATA_DIR, the circle texture from
+OTPARAM_EXAMPLES_DIR) and the histograms in a bar chart. Writes <work dir>/PASSED when every
+check passed.
 """
 
 import math
@@ -307,6 +310,61 @@ if os.environ.get("OTPARAM_SCREENSHOT") == "1":
     pixels = vtk_to_numpy(image.GetOutput().GetPointData().GetScalars())
     colors = len(numpy.unique(pixels[:, :3], axis=0))
     check(colors >= n, f"screenshot {png} shows the colored cells ({colors} distinct colors)")
+
+    # Area-Preserving Parameterization of a shared face in the GUI: the surface textured with
+    # circles through its texture coordinates (the area-preserving ones), against a baseline;
+    # and the histograms in a bar chart view.
+    sys.path.insert(0, os.environ["OTPARAM_EXAMPLES_DIR"])
+    from otparam_example_utils import circle_image
+    from vtkmodules.vtkImagingCore import vtkImageDifference
+    from vtkmodules.vtkIOImage import vtkPNGWriter
+    texture_png = os.path.join(work_dir, "circles_texture.png")
+    writer = vtkPNGWriter()
+    writer.SetFileName(texture_png)
+    writer.SetInputData(circle_image(512))
+    writer.Write()
+    face_file = os.path.join(os.environ["OTPARAM_SHARED_DATA_DIR"], "meshes",
+                             "face_choi_bff_17k.obj")
+    face = AreaPreservingParameterization(Input=Triangulate(Input=OpenDataFile(face_file)))
+    for representation in view.Representations:  # every port shown so far
+        representation.Visibility = 0
+    display = Show(face, view)
+    display.Texture = CreateTexture(texture_png)
+    display.RepeatTextures = 1
+    display.ColorArrayName = [None, ""]
+    view.CameraFocalPoint = [0.0, 0.0, 0.0]
+    view.CameraPosition = [0.0, 0.0, 1.0]
+    view.CameraViewUp = [0.0, 1.0, 0.0]
+    view.ResetCamera()
+    Render(view)
+    face_png = os.path.join(work_dir, "area_preserving_face.png")
+    SaveScreenshot(face_png, view, ImageResolution=[500, 500])
+    baseline = os.path.join(os.environ["OTPARAM_BASELINE_DIR"], "TestPluginGUI_area_preserving_face.png")
+    if not os.path.exists(baseline):
+        check(False, f"no baseline {baseline}: look at {face_png} and commit it as the baseline")
+    else:
+        current, expected = vtkPNGReader(), vtkPNGReader()
+        current.SetFileName(face_png)
+        expected.SetFileName(baseline)
+        difference = vtkImageDifference()
+        difference.SetInputConnection(current.GetOutputPort())
+        difference.SetImageConnection(expected.GetOutputPort())
+        difference.Update()
+        error = difference.GetThresholdedError()
+        check(error <= 0.15, f"{face_png} differs from {baseline} by {error:.3f} (> 0.15)")
+    chart = CreateView("XYBarChartView")
+    AssignViewToLayout(view=chart)
+    bars = Show(OutputPort(face, 2), chart)
+    bars.UseIndexForXAxis = 0
+    bars.XArrayName = "AreaPreservingLogAreaRatioBinCenter"
+    bars.SeriesVisibility = ["AreaPreservingLogAreaRatio"]
+    chart_png = os.path.join(work_dir, "histograms.png")
+    SaveScreenshot(chart_png, chart, ImageResolution=[600, 300])
+    image = vtkPNGReader()
+    image.SetFileName(chart_png)
+    image.Update()
+    pixels = vtk_to_numpy(image.GetOutput().GetPointData().GetScalars())
+    check(len(numpy.unique(pixels[:, :3], axis=0)) >= 3, f"{chart_png} shows the bar chart")
 
 if failures:
     print(f"{len(failures)} check(s) failed", flush=True)
