@@ -304,11 +304,15 @@ if os.environ.get("OTPARAM_SCREENSHOT") == "1":
     from vtkmodules.vtkIOImage import vtkPNGReader
     from vtkmodules.util.numpy_support import vtk_to_numpy
     import numpy
-    image = vtkPNGReader()
-    image.SetFileName(png)
-    image.Update()
-    pixels = vtk_to_numpy(image.GetOutput().GetPointData().GetScalars())
-    colors = len(numpy.unique(pixels[:, :3], axis=0))
+
+    def distinct_colors(path):
+        image = vtkPNGReader()
+        image.SetFileName(path)
+        image.Update()
+        pixels = vtk_to_numpy(image.GetOutput().GetPointData().GetScalars())
+        return len(numpy.unique(pixels[:, :3], axis=0))
+
+    colors = distinct_colors(png)
     check(colors >= n, f"screenshot {png} shows the colored cells ({colors} distinct colors)")
 
     # Area-Preserving Parameterization of a shared face in the GUI: the surface textured with
@@ -360,11 +364,7 @@ if os.environ.get("OTPARAM_SCREENSHOT") == "1":
     bars.SeriesVisibility = ["AreaPreservingLogAreaRatio"]
     chart_png = os.path.join(work_dir, "histograms.png")
     SaveScreenshot(chart_png, chart, ImageResolution=[600, 300])
-    image = vtkPNGReader()
-    image.SetFileName(chart_png)
-    image.Update()
-    pixels = vtk_to_numpy(image.GetOutput().GetPointData().GetScalars())
-    check(len(numpy.unique(pixels[:, :3], axis=0)) >= 3, f"{chart_png} shows the bar chart")
+    check(distinct_colors(chart_png) >= 3, f"{chart_png} shows the bar chart")
 
 if failures:
     print(f"{len(failures)} check(s) failed", flush=True)
