@@ -320,7 +320,6 @@ if os.environ.get("OTPARAM_SCREENSHOT") == "1":
     # and the histograms in a bar chart view.
     sys.path.insert(0, os.environ["OTPARAM_EXAMPLES_DIR"])
     from otparam_example_utils import circle_image
-    from vtkmodules.vtkImagingCore import vtkImageDifference
     from vtkmodules.vtkIOImage import vtkPNGWriter
     texture_png = os.path.join(work_dir, "circles_texture.png")
     writer = vtkPNGWriter()
@@ -347,15 +346,20 @@ if os.environ.get("OTPARAM_SCREENSHOT") == "1":
     if not os.path.exists(baseline):
         check(False, f"no baseline {baseline}: look at {face_png} and commit it as the baseline")
     else:
-        current, expected = vtkPNGReader(), vtkPNGReader()
-        current.SetFileName(face_png)
-        expected.SetFileName(baseline)
-        difference = vtkImageDifference()
-        difference.SetInputConnection(current.GetOutputPort())
-        difference.SetImageConnection(expected.GetOutputPort())
-        difference.Update()
-        error = difference.GetThresholdedError()
-        check(error <= 0.15, f"{face_png} differs from {baseline} by {error:.3f} (> 0.15)")
+        # vtkImageDifference's shift search and averaging forgive circles moved by a few
+        # pixels (measured: thresholded error 0 with the area correction off); count the
+        # pixels that changed colour instead: 1.5% with the correction off, 0 run to run.
+        def rgb(path):
+            image = vtkPNGReader()
+            image.SetFileName(path)
+            image.Update()
+            return vtk_to_numpy(image.GetOutput().GetPointData().GetScalars())[:, :3].astype(int)
+
+        current, expected = rgb(face_png), rgb(baseline)
+        changed = (numpy.abs(current - expected).max(axis=1) > 64).mean() \
+            if current.shape == expected.shape else 1.0
+        check(changed <= 0.005,
+              f"{face_png}: {100 * changed:.2f}% of the pixels differ from {baseline} (> 0.5%)")
     chart = CreateView("XYBarChartView")
     AssignViewToLayout(view=chart)
     bars = Show(OutputPort(face, 2), chart)
