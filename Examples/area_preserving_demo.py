@@ -33,7 +33,8 @@ import sys
 import time
 
 from otparam_example_utils import (circle_image, density_disk_actors, ensure_display,
-                                   read_surface, ring_surface, save_png)
+                                   read_surface, ring_surface, save_png,
+                                   view_along_mean_normal)
 
 STAGE_OUTPUTS = ["conformal_image", "samples", "power_diagram", "brenier_potential",
                  "legendre_dual"]
@@ -248,22 +249,7 @@ def render_circle_texture(surface, path, size):
         renderer.SetViewport(left, 0.0, left + 0.5, 1.0)
         renderer.SetBackground(1.0, 1.0, 1.0)
         renderer.AddActor(actor)
-        renderer.ResetCamera()
-        camera = renderer.GetActiveCamera()
-        n = [0.0, 0.0, 0.0]
-        array = normals.GetOutput().GetPointData().GetNormals()
-        for i in range(array.GetNumberOfTuples()):
-            for k, value in enumerate(array.GetTuple3(i)):
-                n[k] += value
-        length = math.sqrt(sum(c * c for c in n)) or 1.0
-        focal = camera.GetFocalPoint()
-        distance = camera.GetDistance()
-        camera.SetPosition(*(focal[k] + distance * n[k] / length for k in range(3)))
-        camera.SetViewUp(*((0.0, 1.0, 0.0) if abs(n[1]) < 0.9 * length else (0.0, 0.0, 1.0)))
-        camera.OrthogonalizeViewUp()
-        camera.Elevation(-35.0)
-        camera.OrthogonalizeViewUp()
-        renderer.ResetCamera()
+        camera = view_along_mean_normal(renderer, normals.GetOutput(), -35.0)
         camera.Zoom(1.3)
         window.AddRenderer(renderer)
     return render_to_png(window, path)

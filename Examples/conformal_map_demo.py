@@ -19,7 +19,7 @@ import os
 import sys
 
 from otparam_example_utils import (density_disk_actors, ensure_display, read_surface,
-                                   ring_surface, save_png)
+                                   ring_surface, save_png, view_along_mean_normal)
 from vtkmodules.vtkCommonCore import vtkDoubleArray, vtkUnsignedCharArray
 from vtkmodules.vtkCommonDataModel import vtkImageData, vtkPolyData
 
@@ -105,24 +105,8 @@ def render(surface, disk, size=1200, elevation=-50.0):
     window.SetOffScreenRendering(1)
 
     # Cameras from the data alone: the surface seen along its mean normal, the disk from +z.
-    left.ResetCamera()
-    camera = left.GetActiveCamera()
-    nx = ny = nz = 0.0
     normals.Update()
-    array = normals.GetOutput().GetPointData().GetNormals()
-    for i in range(array.GetNumberOfTuples()):
-        a, b, c = array.GetTuple3(i)
-        nx, ny, nz = nx + a, ny + b, nz + c
-    length = math.sqrt(nx * nx + ny * ny + nz * nz) or 1.0
-    fx, fy, fz = camera.GetFocalPoint()
-    distance = camera.GetDistance()
-    camera.SetPosition(fx + distance * nx / length, fy + distance * ny / length,
-                       fz + distance * nz / length)
-    camera.SetViewUp(*((0.0, 1.0, 0.0) if abs(ny) < 0.9 * length else (0.0, 0.0, 1.0)))
-    camera.OrthogonalizeViewUp()
-    camera.Elevation(elevation)  # oblique, so that a relief shows
-    camera.OrthogonalizeViewUp()
-    left.ResetCamera()
+    camera = view_along_mean_normal(left, normals.GetOutput(), elevation)  # oblique: relief shows
     camera.Zoom(1.25)
     right.GetActiveCamera().SetPosition(0.15, 0.0, 5.0)
     right.GetActiveCamera().SetFocalPoint(0.15, 0.0, 0.0)

@@ -197,3 +197,26 @@ def circle_image(size=1024, per_row=16):
             colors.SetTuple3(j * size + i, *((40, 70, 150) if inside else (245, 245, 245)))
     image.GetPointData().SetScalars(colors)
     return image
+
+
+def view_along_mean_normal(renderer, normals, elevation):
+    """Points the renderer's camera along the mean of the point normals of `normals` (a
+    vtkPolyData with normals), tilted by `elevation` degrees, and resets it to the data: a
+    camera from the data alone, so pictures are deterministic."""
+    renderer.ResetCamera()
+    camera = renderer.GetActiveCamera()
+    n = [0.0, 0.0, 0.0]
+    array = normals.GetPointData().GetNormals()
+    for i in range(array.GetNumberOfTuples()):
+        for k, value in enumerate(array.GetTuple3(i)):
+            n[k] += value
+    length = math.sqrt(sum(c * c for c in n)) or 1.0
+    focal = camera.GetFocalPoint()
+    distance = camera.GetDistance()
+    camera.SetPosition(*(focal[k] + distance * n[k] / length for k in range(3)))
+    camera.SetViewUp(*((0.0, 1.0, 0.0) if abs(n[1]) < 0.9 * length else (0.0, 0.0, 1.0)))
+    camera.OrthogonalizeViewUp()
+    camera.Elevation(elevation)
+    camera.OrthogonalizeViewUp()
+    renderer.ResetCamera()
+    return camera
