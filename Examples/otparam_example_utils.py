@@ -69,6 +69,72 @@ def ring_surface(rings, height):
     return surface
 
 
+def polar_patch(center, radii, angles, closed):
+    """Points center + r (cos a, sin a) for every r in radii (increasing; a first radius of 0
+    gives one centre point) and a in angles, as a vtkPolyData of counter-clockwise triangles;
+    closed joins the last angle to the first (a full ring)."""
+    from vtkmodules.vtkCommonCore import vtkPoints
+    from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData
+
+    points, polys = vtkPoints(), vtkCellArray()
+    points.SetDataTypeToDouble()
+    rows = []
+    for r in radii:
+        if r == 0.0:
+            rows.append([points.InsertNextPoint(center[0], center[1], 0.0)] * len(angles))
+            continue
+        rows.append([points.InsertNextPoint(center[0] + r * math.cos(a),
+                                            center[1] + r * math.sin(a), 0.0) for a in angles])
+    columns = len(angles) if closed else len(angles) - 1
+    for inner, outer in zip(rows, rows[1:]):
+        for j in range(columns):
+            k = (j + 1) % len(angles)
+            if inner[j] == inner[k]:  # fan around the centre point
+                polys.InsertNextCell(3, (inner[j], outer[j], outer[k]))
+            else:
+                polys.InsertNextCell(3, (inner[j], outer[j], outer[k]))
+                polys.InsertNextCell(3, (inner[j], outer[k], inner[k]))
+    patch = vtkPolyData()
+    patch.SetPoints(points)
+    patch.SetPolys(polys)
+    return patch
+
+
+def append_polydata(*parts):
+    """The parts as one vtkPolyData (coincident points are not merged)."""
+    from vtkmodules.vtkFiltersCore import vtkAppendPolyData
+    append = vtkAppendPolyData()
+    for part in parts:
+        append.AddInputData(part)
+    append.Update()
+    return append.GetOutput()
+
+
+def annulus(inner_radius=0.4, outer_radius=1.0, rings=8, sectors=96):
+    """A triangulated annulus centred at the origin: a target support with a hole."""
+    radii = [inner_radius + (outer_radius - inner_radius) * k / rings for k in range(rings + 1)]
+    angles = [2.0 * math.pi * j / sectors for j in range(sectors)]
+    return polar_patch((0.0, 0.0), radii, angles, closed=True)
+
+
+def two_half_disks(gap=0.2, radius=0.8, rings=12, sectors=48):
+    """Two half-disks of the same area facing away from each other, their flat sides gap apart
+    on either side of the y axis: a target support with two components."""
+    radii = [radius * k / rings for k in range(rings + 1)]
+    left = [math.pi / 2 + math.pi * j / sectors for j in range(sectors + 1)]
+    right = [-math.pi / 2 + math.pi * j / sectors for j in range(sectors + 1)]
+    return append_polydata(polar_patch((-gap / 2, 0.0), radii, left, closed=False),
+                           polar_patch((gap / 2, 0.0), radii, right, closed=False))
+
+
+def letter_c(rings=8, sectors=72):
+    """A thick letter C (an annular sector open to the right): a non-convex target support."""
+    radii = [0.45 + 0.45 * k / rings for k in range(rings + 1)]
+    opening = math.pi / 4
+    angles = [opening + (2.0 * math.pi - 2.0 * opening) * j / sectors for j in range(sectors + 1)]
+    return polar_patch((0.0, 0.0), radii, angles, closed=False)
+
+
 def read_surface(path):
     """A triangle surface from any file VTK reads, or .off (VTK 9.2 has no OFF reader)."""
     from vtkmodules.vtkCommonCore import vtkPoints

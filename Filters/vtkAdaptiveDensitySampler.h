@@ -16,15 +16,20 @@
  * The work is done by the VTK-free OTParam core (Filters/Core/AdaptiveSampler.h); this class
  * converts data and validates input.
  *
- * Input: a vtkPolyData made of triangles only, in the plane z = 0, that tiles a convex region
- * (no holes, one component, no overlapping triangles), carrying the density as a numeric
+ * Input: a vtkPolyData made of triangles only, in the plane z = 0, without overlapping
+ * triangles, carrying the density as a numeric
  * one-component array chosen with SetInputArrayToProcess(0, 0, 0, association, name); the
  * default is the point array `AreaDensity`. A point array (FIELD_ASSOCIATION_POINTS) is
  * interpolated linearly over each triangle; a cell array (FIELD_ASSOCIATION_CELLS) is one
  * constant value per triangle. The density must be finite and non-negative, not all zero. When
  * the domain's boundary lies on the unit circle, the domain is the exact unit disk (boundary
  * samples on the circle, total mass pi). Points used by no triangle are ignored (a warning
- * says so).
+ * says so). The domain is the density's support: triangles where the density is identically
+ * zero are left out. It may be non-convex, have holes and several components (target supports
+ * of discontinuous transport maps); every boundary loop is then sampled by nu-length like the
+ * disk's boundary, and the refinement runs on CGAL's constrained Delaunay mesher (boundary
+ * samples on a curved boundary given as a polygon are put back on it afterwards, which can
+ * cost a few degrees of MinimumAngle). Boundary loops must not touch each other.
  *
  * Output: the samples as points (x, y, 0) with the triangles of their Delaunay triangulation
  * (the input triangles in MeshVertices mode), no vertex cells. Point array `Mass` (double):
@@ -38,8 +43,8 @@
  * `SecondsMasses`, `SecondsTotal`.
  *
  * Bad input (an empty domain; the density array missing, non-numeric, with several components,
- * NaN, infinite, negative or all zero; a domain that is not planar, not made of triangles, not
- * convex, with holes or overlapping triangles; NumberOfSamples < 3 or above
+ * NaN, infinite, negative or all zero; a domain that is not planar, not made of triangles, with
+ * overlapping triangles or boundary loops that touch; NumberOfSamples < 3 or above
  * MaximumNumberOfSamples; MinimumAngle outside (0, 35]; SamplingMode or SizeRule out of range)
  * is reported with vtkErrorMacro naming the problem and the offending ids; RequestData then
  * returns 0 and the output is empty. The input is never modified. Progress is reported and

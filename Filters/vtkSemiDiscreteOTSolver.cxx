@@ -4,6 +4,7 @@
 #include "vtkAlgorithmOutput.h"
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
+#include "vtkCellType.h"
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
@@ -21,6 +22,7 @@
 #include "vtkStringArray.h"
 
 #include "OTParamAdapterUtilities.h"
+#include "Discontinuities.h"
 #include "SemiDiscreteOT.h"
 #include "SourceMeasure.h"
 
@@ -516,18 +518,46 @@ int vtkSemiDiscreteOTSolver::RequestData(
     out->GetPointData()->AddArray(diracId);
   }
 
-  // ---- Port 4: discontinuity set. Every power edge is dual to a Delaunay edge, so without a
-  // model of the target's support there is none to report: empty, with its array declared.
+  // ---- Port 4: discontinuity set. The target's support is the union of the input's triangles
+  // (the sampler's triangulation of it); without triangles it is not known and nothing is
+  // reported.
   {
+    std::vector<otparam::Triangle> support;
+    vtkNew<vtkIdList> ids;
+    for (vtkIdType c = 0; c < input->GetNumberOfCells(); ++c)
+    {
+      if (input->GetCellType(c) == VTK_TRIANGLE)
+      {
+        input->GetCellPoints(c, ids);
+        support.push_back({ static_cast<int>(ids->GetId(0)), static_cast<int>(ids->GetId(1)),
+          static_cast<int>(ids->GetId(2)) });
+      }
+    }
+    const auto jumps = support.empty()
+      ? std::vector<otparam::PowerDiagramGeometry::Edge>()
+      : otparam::discontinuityEdges(geometry, diracs, support);
     vtkPolyData* out = outputs[4];
     vtkNew<vtkPoints> points;
     points->SetDataTypeToDouble();
-    out->SetPoints(points);
     vtkNew<vtkCellArray> lines;
-    out->SetLines(lines);
     vtkNew<vtkDoubleArray> jump;
     jump->SetName("JumpLength");
+    vtkNew<vtkIntArray> pair;
+    pair->SetName("DiracIds");
+    pair->SetNumberOfComponents(2);
+    for (const auto& e : jumps)
+    {
+      const vtkIdType line[2] = { points->InsertNextPoint(e.a.x, e.a.y, 0.0),
+        points->InsertNextPoint(e.b.x, e.b.y, 0.0) };
+      lines->InsertNextCell(2, line);
+      jump->InsertNextValue(otparam::norm(diracs[e.i] - diracs[e.j]));
+      const int dirac[2] = { e.i, e.j };
+      pair->InsertNextTypedTuple(dirac);
+    }
+    out->SetPoints(points);
+    out->SetLines(lines);
     out->GetCellData()->AddArray(jump);
+    out->GetCellData()->AddArray(pair);
   }
 
   secondsOutput += Seconds(startOutput);

@@ -41,10 +41,14 @@
  *   clipped cell fan-triangulated at height <x, y_i> - h_i. Cell array `DiracId` (int).
  * - Port 3, "Legendre Dual": the graph of the dual potential, the points (y_i, h_i) with the
  *   weighted Delaunay triangles. Point array `DiracId` (int).
- * - Port 4, "Discontinuities": the discontinuity set of the transport map (power edges between
- *   cells whose Diracs are not neighbours in the target's support) as lines with cell array
- *   `JumpLength` (|y_i - y_j|). The target support is not modelled yet, so this output is
- *   empty (with `JumpLength` declared); it is filled by the complicated-supports feature.
+ * - Port 4, "Discontinuities": the discontinuity (singularity) set of the transport map, one
+ *   line per power edge (clipped to the source) between cells i, j whose Diracs are not
+ *   neighbours in the target's support. The support is the union of the input's triangles
+ *   (the sampler's triangulation of it); y_i and y_j are neighbours when the segment between
+ *   them stays in that union (an exact straight walk through the triangles). So a jump is
+ *   reported across a hole, between components, or across a concavity, never for Diracs of a
+ *   convex support. Cell arrays `JumpLength` (|y_i - y_j|) and `DiracIds` (int, 2 components:
+ *   i, j). Empty when the input has no triangles (the support is then unknown).
  *
  * Bad input (no points; `Mass` missing, non-numeric, NaN, zero or negative; non-finite or
  * duplicate points; a non-planar, non-triangle or non-convex source domain; a `Density` that

@@ -15,6 +15,10 @@
 
 #include "SemiDiscreteOT.h"
 
+#include <CGAL/Constrained_Delaunay_triangulation_2.h>
+#include <CGAL/Delaunay_mesh_face_base_2.h>
+#include <CGAL/Delaunay_mesh_size_criteria_2.h>
+#include <CGAL/Delaunay_mesher_2.h>
 #include <CGAL/Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
@@ -22,8 +26,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <map>
 #include <numeric>
 #include <queue>
+#include <set>
 #include <sstream>
 #include <unordered_map>
 #include <unordered_set>
@@ -429,7 +435,9 @@ bool relax(const DensityField& field, const SamplerOptions& options, std::vector
     const CellMeasures cells = computeCellMeasures(*density, samples, heights);
     for (size_t i = 0; i < samples.size(); ++i)
     {
-      if (!onBoundary[i] && cells.mass[i] > 0.0)
+      // A cell clipped to a non-convex domain can have its centroid outside (across a notch).
+      if (!onBoundary[i] && cells.mass[i] > 0.0 &&
+        (field.isConvex() || field.contains(cells.centroid[i])))
       {
         samples[i] = cells.centroid[i];
       }
@@ -472,6 +480,18 @@ Candidate massesOf(const SourceMeasure& source, const std::vector<Vec2>& samples
   return c;
 }
 
+// Samples with their triangles, and their masses (timed).
+Candidate measuredCandidate(const SourceMeasure& source, std::vector<Vec2> points,
+  std::vector<Triangle> triangles, double sourceMass)
+{
+  const auto t0 = Clock::now();
+  Candidate c = massesOf(source, points, sourceMass);
+  c.secondsMasses = secondsSince(t0);
+  c.samples = std::move(points);
+  c.triangles = std::move(triangles);
+  return c;
+}
+
 // One more refinement pass for angles only (a size bound nothing exceeds): dropping boundary
 // samples and relaxing can leave a few thin triangles. Then the masses.
 Candidate finishCandidate(const DensityField& field, const SamplerOptions& options,
@@ -495,12 +515,549 @@ Candidate finishCandidate(const DensityField& field, const SamplerOptions& optio
       triangles.push_back({ id[&*f->vertex(0)], id[&*f->vertex(1)], id[&*f->vertex(2)] });
     }
   }
-  const auto t0 = Clock::now();
-  Candidate c = massesOf(source, points, sourceMass);
-  c.secondsMasses = secondsSince(t0);
-  c.samples = std::move(points);
-  c.triangles = std::move(triangles);
-  return c;
+  return measuredCandidate(source, std::move(points), std::move(triangles), sourceMass);
+}
+
+// The relaxed samples, unless their masses spread by more than 0.3 and the unrelaxed ones are
+// more even (see sampleDensity), become the result.
+void adoptCandidate(SamplerResult& result, Candidate best, bool tryUnrelaxed,
+  const std::function<Candidate()>& makeUnrelaxed)
+{
+  result.relaxed = true;
+  if (tryUnrelaxed && best.coefficientOfVariation > 0.3)
+  {
+    Candidate unrelaxed = makeUnrelaxed();
+    if (unrelaxed.coefficientOfVariation < best.coefficientOfVariation)
+    {
+      best = std::move(unrelaxed);
+      result.relaxed = false;
+    }
+  }
+  result.secondsMasses = best.secondsMasses;
+  result.samples = std::move(best.samples);
+  result.triangles = std::move(best.triangles);
+  result.mass = std::move(best.mass);
+  result.massCoefficientOfVariation = best.coefficientOfVariation;
+}
+
+// ---- Domains that are not convex (holes, several components, concavities): the same graded
+// refinement, on CGAL's constrained Delaunay mesher. Here the boundary is polygonal (a circle
+// is always convex), so the mesher's straight constrained edges, split at their midpoints, are
+// what is needed, and it already handles what the convex path does by hand: constrained edges
+// that keep triangles out of holes, encroachment, and small input angles (clusters).
+using MeshFb = CGAL::Delaunay_mesh_face_base_2<K>;
+using MeshTds = CGAL::Triangulation_data_structure_2<CGAL::Triangulation_vertex_base_2<K>, MeshFb>;
+using CDT = CGAL::Constrained_Delaunay_triangulation_2<K, MeshTds, CGAL::Exact_predicates_tag>;
+
+// The mesher's size criterion on edge lengths, replaced by the nu-length of the circumradius
+// against eps (the convex path's test), with the largest density over the triangle.
+class GradedCriteria : public CGAL::Delaunay_mesh_size_criteria_2<CDT>
+{
+  using Base = CGAL::Delaunay_mesh_size_criteria_2<CDT>;
+
+public:
+  using Quality = Base::Quality;
+  struct Grading
+  {
+    const DensityField* field;
+    bool graded;
+    SizeRule rule;
+    double epsilon; // infinite: angles only
+  };
+
+  // The angle bound lives in a virtual base: it must be initialized here, or it stays CGAL's
+  // default of 20.7 degrees.
+  GradedCriteria(double sinMinimumAngle, const Grading& grading)
+    : CGAL::Delaunay_mesh_criteria_2<CDT>(sinMinimumAngle * sinMinimumAngle)
+    , Base(sinMinimumAngle * sinMinimumAngle, 0.0)
+    , Sizes(grading)
+  {
+  }
+
+  class Is_bad
+  {
+  public:
+    Is_bad(double bound, const Grading& grading)
+      : B(bound)
+      , G(grading)
+    {
+    }
+    CGAL::Mesh_2::Face_badness operator()(const Quality& q) const
+    {
+      if (q.size() > 1.0)
+      {
+        return CGAL::Mesh_2::IMPERATIVELY_BAD;
+      }
+      return q.sine() < B ? CGAL::Mesh_2::BAD : CGAL::Mesh_2::NOT_BAD;
+    }
+    CGAL::Mesh_2::Face_badness operator()(const CDT::Face_handle& f, Quality& q) const
+    {
+      const Point &p = f->vertex(0)->point(), &r = f->vertex(1)->point(),
+                  &s = f->vertex(2)->point();
+      if (isSliver(p, r, s))
+      {
+        // Boundary samples on one straight input edge (see isSliver): refining their flat
+        // "triangle" would split the edge forever.
+        q = Quality(1.0, 0.0);
+        return CGAL::Mesh_2::NOT_BAD;
+      }
+      const double a = CGAL::squared_distance(r, s), b = CGAL::squared_distance(s, p),
+                   c = CGAL::squared_distance(p, r);
+      const double twiceArea = std::abs(CGAL::area(p, r, s)) * 2.0;
+      // Squared sine of the smallest angle, as CGAL's criteria compute it.
+      const double largest = std::max({ a, b, c });
+      const double middle = a + b + c - largest - std::min({ a, b, c });
+      q.first = twiceArea * twiceArea / (largest * middle);
+      q.second = 0.0;
+      if (std::isfinite(G.epsilon))
+      {
+        const double radius = std::sqrt(CGAL::squared_distance(CGAL::circumcenter(p, r, s), p));
+        double g = 1.0;
+        if (G.graded)
+        {
+          const Vec2 vp = toVec(p), vr = toVec(r), vs = toVec(s);
+          g = std::max({ G.field->value(vp), G.field->value(vr), G.field->value(vs),
+            G.field->maxInsideTriangle(vp, vr, vs) });
+          g = G.rule == SizeRule::SqrtDensity ? std::sqrt(g) : g;
+        }
+        const double ratio = radius * g / G.epsilon;
+        q.second = ratio * ratio;
+      }
+      return operator()(q);
+    }
+
+  private:
+    double B;
+    Grading G;
+  };
+
+  Is_bad is_bad_object() const { return Is_bad(this->bound(), Sizes); }
+
+private:
+  Grading Sizes;
+};
+using Mesher = CGAL::Delaunay_mesher_2<CDT, GradedCriteria>;
+
+// Faces of the constrained triangulation inside the domain: those an odd number of constrained
+// edges away from the outside (the domain's boundary loops are the constraints). The mesher's
+// own marks are not trusted after a refinement: splitting a hole's boundary edge marks the new
+// faces on both sides as inside.
+void markDomain(CDT& cdt)
+{
+  for (auto f = cdt.all_faces_begin(); f != cdt.all_faces_end(); ++f)
+  {
+    f->set_in_domain(false);
+  }
+  std::unordered_set<const void*> reached;
+  std::vector<CDT::Face_handle> frontier{ cdt.infinite_face() }, next;
+  reached.insert(&*cdt.infinite_face());
+  for (int level = 0; !frontier.empty(); ++level)
+  {
+    next.clear();
+    // Flood this level's region; faces across a constrained edge start the next level.
+    while (!frontier.empty())
+    {
+      const CDT::Face_handle f = frontier.back();
+      frontier.pop_back();
+      f->set_in_domain(level % 2 == 1);
+      for (int k = 0; k < 3; ++k)
+      {
+        const CDT::Face_handle n = f->neighbor(k);
+        if (reached.count(&*n))
+        {
+          continue;
+        }
+        if (f->is_constrained(k))
+        {
+          next.push_back(n);
+        }
+        else
+        {
+          reached.insert(&*n);
+          frontier.push_back(n);
+        }
+      }
+    }
+    for (const CDT::Face_handle& n : next)
+    {
+      if (reached.insert(&*n).second)
+      {
+        frontier.push_back(n);
+      }
+    }
+  }
+}
+
+// Refines cdt (its boundary already constrained, plus any interior points) until no triangle of
+// the domain is too large or too thin. Returns false when aborted.
+bool refineSupport(CDT& cdt, const DensityField& field, const SamplerOptions& options,
+  double epsilon, bool& capped, const std::function<bool(long long)>& keepGoing)
+{
+  markDomain(cdt);
+  GradedCriteria::Grading grading{ &field, options.mode == SamplingMode::Adaptive,
+    options.sizeRule, epsilon };
+  Mesher mesher(cdt, GradedCriteria(std::sin(options.minimumAngleDegrees * Pi / 180.0), grading));
+  mesher.init(true);
+  long long steps = 0;
+  while (mesher.try_one_step_refine_mesh())
+  {
+    if (static_cast<long long>(cdt.number_of_vertices()) >= options.maximumNumberOfSamples)
+    {
+      capped = true;
+      break;
+    }
+    if (++steps % 4096 == 0 && !keepGoing(static_cast<long long>(cdt.number_of_vertices())))
+    {
+      return false;
+    }
+  }
+  markDomain(cdt);
+  return true;
+}
+
+// The boundary vertices of the refined triangulation, loop by loop, with the domain on the left.
+std::vector<std::vector<Vec2>> boundaryLoopsOf(const CDT& cdt)
+{
+  std::map<std::pair<double, double>, Vec2> next;
+  for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f)
+  {
+    if (!f->is_in_domain())
+    {
+      continue;
+    }
+    for (int k = 0; k < 3; ++k)
+    {
+      if (f->is_constrained(k))
+      {
+        const Point& from = f->vertex(CDT::ccw(k))->point();
+        next[{ from.x(), from.y() }] = toVec(f->vertex(CDT::cw(k))->point());
+      }
+    }
+  }
+  std::vector<std::vector<Vec2>> loops;
+  std::set<std::pair<double, double>> done;
+  for (const auto& [start, unused] : next)
+  {
+    if (done.count(start))
+    {
+      continue;
+    }
+    std::vector<Vec2> loop;
+    std::pair<double, double> v = start;
+    while (!done.count(v) && next.count(v))
+    {
+      done.insert(v);
+      loop.push_back({ v.first, v.second });
+      const Vec2 w = next.at(v);
+      v = { w.x, w.y };
+    }
+    loops.push_back(std::move(loop));
+  }
+  return loops;
+}
+
+// Corners of a boundary loop: where it turns by more than 10 degrees. Between corners the
+// boundary is sampled as one curve, so that a circle given as a fine polygon is not sampled at
+// least once per input edge whatever the sample count.
+std::vector<char> loopCorners(const std::vector<Vec2>& loop)
+{
+  const size_t n = loop.size();
+  std::vector<char> corner(n, 0);
+  for (size_t k = 0; k < n; ++k)
+  {
+    const Vec2 u = loop[k] - loop[(k + n - 1) % n], w = loop[(k + 1) % n] - loop[k];
+    corner[k] = dot(u, w) < 0.0 || std::abs(cross(u, w)) > std::sin(10.0 * Pi / 180.0) * norm(u) * norm(w);
+  }
+  return corner;
+}
+
+// As boundaryToDrop for the convex path: every other boundary sample goes, except the corners of
+// the input's boundary, so that boundary cells are not half as heavy as interior ones.
+std::vector<std::vector<Vec2>> thinBoundary(
+  const std::vector<std::vector<Vec2>>& loops, const DensityField& field)
+{
+  std::set<std::pair<double, double>> corners;
+  for (const auto& loop : field.boundaryLoops())
+  {
+    const std::vector<char> isCorner = loopCorners(loop);
+    for (size_t k = 0; k < loop.size(); ++k)
+    {
+      if (isCorner[k])
+      {
+        corners.insert({ loop[k].x, loop[k].y });
+      }
+    }
+  }
+  std::vector<std::vector<Vec2>> thinned;
+  for (const auto& loop : loops)
+  {
+    std::vector<Vec2> kept;
+    bool previousDropped = true;
+    for (const Vec2& v : loop)
+    {
+      if (!previousDropped && !corners.count({ v.x, v.y }) && loop.size() > 8)
+      {
+        previousDropped = true;
+        continue;
+      }
+      kept.push_back(v);
+      previousDropped = false;
+    }
+    thinned.push_back(std::move(kept));
+  }
+  return thinned;
+}
+
+void insertLoops(CDT& cdt, const std::vector<std::vector<Vec2>>& loops)
+{
+  for (const auto& loop : loops)
+  {
+    std::vector<Point> points;
+    for (const Vec2& v : loop)
+    {
+      points.emplace_back(v.x, v.y);
+    }
+    cdt.insert_constraint(points.begin(), points.end(), true);
+  }
+}
+
+// Samples and the triangles of the domain, angles repaired, with their masses.
+Candidate finishSupportCandidate(const DensityField& field, const SamplerOptions& options,
+  const SourceMeasure& source, const std::vector<std::vector<Vec2>>& loops,
+  const std::vector<Vec2>& interior, double sourceMass)
+{
+  CDT cdt;
+  insertLoops(cdt, loops);
+  for (const Vec2& p : interior)
+  {
+    cdt.insert(Point(p.x, p.y));
+  }
+  bool capped = false;
+  refineSupport(cdt, field, options, std::numeric_limits<double>::infinity(), capped,
+    [](long long) { return true; });
+  // As after the main refinement: boundary samples the repair added go back on the boundary.
+  std::unordered_set<const void*> onBoundary;
+  for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f)
+  {
+    for (int k = 0; f->is_in_domain() && k < 3; ++k)
+    {
+      if (f->is_constrained(k))
+      {
+        onBoundary.insert(&*f->vertex(CDT::cw(k)));
+        onBoundary.insert(&*f->vertex(CDT::ccw(k)));
+      }
+    }
+  }
+  std::vector<Vec2> points;
+  std::vector<Triangle> triangles;
+  std::unordered_map<const void*, int> id;
+  for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f)
+  {
+    if (!f->is_in_domain() ||
+      isSliver(f->vertex(0)->point(), f->vertex(1)->point(), f->vertex(2)->point()))
+    {
+      continue;
+    }
+    Triangle t;
+    for (int k = 0; k < 3; ++k)
+    {
+      const auto inserted = id.emplace(&*f->vertex(k), static_cast<int>(points.size()));
+      if (inserted.second)
+      {
+        const Vec2 p = toVec(f->vertex(k)->point());
+        points.push_back(onBoundary.count(&*f->vertex(k)) ? field.nearestBoundaryPoint(p) : p);
+      }
+      t[k] = inserted.first->second;
+    }
+    triangles.push_back(t);
+  }
+  return measuredCandidate(source, std::move(points), std::move(triangles), sourceMass);
+}
+
+// The whole sampling of a non-convex domain: boundary samples along every loop spaced by
+// nu-length eps, graded refinement with eps calibrated to the target count, every other
+// boundary sample dropped, Lloyd steps, masses. Fills result like sampleDensity does.
+void sampleSupport(const DensityField& field, const SamplerOptions& options, double integral,
+  SamplerResult& result)
+{
+  const double target = static_cast<double>(options.numberOfSamples);
+  const bool graded = options.mode == SamplingMode::Adaptive;
+  auto grading = [&](Vec2 x) {
+    if (!graded)
+    {
+      return 1.0;
+    }
+    const double g = field.value(x);
+    return options.sizeRule == SizeRule::SqrtDensity ? std::sqrt(g) : g;
+  };
+  double runTarget = target >= 4000.0 ? target / 4.0 : target;
+  double epsilon = std::sqrt(integral / runTarget);
+  std::unique_ptr<CDT> cdt;
+  std::vector<std::vector<Vec2>> loops;
+  double done = 0.0;
+  for (int run = 0; run < 5; ++run)
+  {
+    cdt = std::make_unique<CDT>();
+    std::vector<std::vector<Vec2>> boundary;
+    for (const auto& loop : field.boundaryLoops())
+    {
+      // From corner to corner (from point 0 round the whole loop when it has none), samples
+      // spaced evenly in nu-length along the polyline.
+      const size_t n = loop.size();
+      const std::vector<char> corner = loopCorners(loop);
+      size_t first = 0;
+      while (first < n && !corner[first])
+      {
+        ++first;
+      }
+      first = first == n ? 0 : first;
+      std::vector<Vec2> samples;
+      for (size_t piece = first, walked = 0; walked < n;)
+      {
+        std::vector<Vec2> path{ loop[piece] };
+        std::vector<double> cumulative{ 0.0 };
+        size_t k = piece;
+        do
+        {
+          const Vec2 a = loop[k], b = loop[(k + 1) % n];
+          const int fine = 16;
+          for (int q = 0; q < fine; ++q)
+          {
+            const Vec2 from = a + (static_cast<double>(q) / fine) * (b - a);
+            const Vec2 to = a + (static_cast<double>(q + 1) / fine) * (b - a);
+            cumulative.push_back(cumulative.back() + grading(0.5 * (from + to)) * norm(to - from));
+            path.push_back(to);
+          }
+          k = (k + 1) % n;
+          ++walked;
+        } while (k != first && !corner[k]);
+        const int count = std::max(1, static_cast<int>(std::ceil(cumulative.back() / epsilon)));
+        for (int q = 0; q < count; ++q)
+        {
+          const double at = cumulative.back() * q / count;
+          const size_t j = static_cast<size_t>(
+            std::upper_bound(cumulative.begin(), cumulative.end(), at) - cumulative.begin()) - 1;
+          const double step = cumulative[j + 1] - cumulative[j];
+          const double within = step > 0.0 ? (at - cumulative[j]) / step : 0.0;
+          samples.push_back(q == 0 ? path[0] : path[j] + within * (path[j + 1] - path[j]));
+        }
+        piece = k;
+      }
+      boundary.push_back(std::move(samples));
+    }
+    insertLoops(*cdt, boundary);
+    ++result.refinementRuns;
+    const double share = runTarget / (target * 2.2);
+    const bool finished = refineSupport(*cdt, field, options, epsilon, result.capped,
+      [&](long long count) {
+        return !options.progress ||
+          options.progress(std::min(0.9, done + 0.9 * share * count / runTarget));
+      });
+    done = std::min(0.9, done + 0.9 * share);
+    if (!finished)
+    {
+      result.aborted = true;
+      return;
+    }
+    loops = thinBoundary(boundaryLoopsOf(*cdt), field);
+    size_t dropped = 0;
+    for (const auto& loop : boundaryLoopsOf(*cdt))
+    {
+      dropped += loop.size();
+    }
+    for (const auto& loop : loops)
+    {
+      dropped -= loop.size();
+    }
+    std::size_t inDomain = 0;
+    {
+      std::unordered_set<const void*> seen;
+      for (auto f = cdt->finite_faces_begin(); f != cdt->finite_faces_end(); ++f)
+      {
+        for (int k = 0; f->is_in_domain() && k < 3; ++k)
+        {
+          seen.insert(&*f->vertex(k));
+        }
+      }
+      inDomain = seen.size();
+    }
+    const double count = static_cast<double>(inDomain - dropped);
+    result.epsilon = epsilon;
+    if (result.capped)
+    {
+      break;
+    }
+    epsilon *= std::sqrt(count / target);
+    if (runTarget == target && std::abs(count / target - 1.0) <= 0.08)
+    {
+      break;
+    }
+    runTarget = target;
+  }
+  // The refinement splits boundary edges at their midpoints, which for a curved boundary given
+  // as a polygon lie on chords: put them back on the boundary (a move of the chord's sagitta).
+  for (auto& loop : loops)
+  {
+    for (Vec2& v : loop)
+    {
+      v = field.nearestBoundaryPoint(v);
+    }
+  }
+  // Interior samples: vertices of domain faces that are not on a boundary loop.
+  std::set<std::pair<double, double>> onLoop;
+  for (const auto& loop : boundaryLoopsOf(*cdt))
+  {
+    for (const Vec2& v : loop)
+    {
+      onLoop.insert({ v.x, v.y });
+    }
+  }
+  std::vector<Vec2> interior;
+  {
+    std::unordered_set<const void*> seen;
+    for (auto f = cdt->finite_faces_begin(); f != cdt->finite_faces_end(); ++f)
+    {
+      for (int k = 0; f->is_in_domain() && k < 3; ++k)
+      {
+        const Point& p = f->vertex(k)->point();
+        if (seen.insert(&*f->vertex(k)).second && !onLoop.count({ p.x(), p.y() }))
+        {
+          interior.push_back(toVec(p));
+        }
+      }
+    }
+  }
+  std::string error;
+  const auto source = field.makeSource(error);
+  if (!source)
+  {
+    result.error = error;
+    return;
+  }
+  // Lloyd steps on every sample, the boundary ones held fixed.
+  std::vector<Vec2> all;
+  std::vector<char> fixed;
+  for (const auto& loop : loops)
+  {
+    all.insert(all.end(), loop.begin(), loop.end());
+    fixed.insert(fixed.end(), loop.size(), 1);
+  }
+  all.insert(all.end(), interior.begin(), interior.end());
+  fixed.insert(fixed.end(), interior.size(), 0);
+  if (!relax(field, options, all, fixed, error))
+  {
+    result.error = error;
+    return;
+  }
+  if (options.progress && !options.progress(0.9))
+  {
+    result.aborted = true;
+    return;
+  }
+  const std::vector<Vec2> relaxed(all.begin() + static_cast<long>(all.size() - interior.size()), all.end());
+  adoptCandidate(result,
+    finishSupportCandidate(field, options, *source, loops, relaxed, result.sourceMass), graded,
+    [&] { return finishSupportCandidate(field, options, *source, loops, interior, result.sourceMass); });
 }
 } // namespace
 
@@ -561,97 +1118,95 @@ SamplerResult sampleDensity(const DensityField& field, const SamplerOptions& opt
       }
     }
     const double target = static_cast<double>(options.numberOfSamples);
-    double runTarget = target >= 4000.0 ? target / 4.0 : target;
-    double epsilon = std::sqrt(integral / runTarget);
-    double done = 0.0;
-    std::unique_ptr<Refinement> refinement;
-    std::unordered_set<const void*> drop; // boundary samples dropped from the last run
-    for (int run = 0; run < 5; ++run)
+    if (!field.isConvex())
     {
-      refinement = std::make_unique<Refinement>(field, options, epsilon);
-      ++result.refinementRuns;
-      const double share = runTarget / (target * 2.2); // rough share of the total work
-      const bool finished = refinement->run([&](long long count) {
-        return !options.progress ||
-          options.progress(std::min(0.9, done + 0.9 * share * count / runTarget));
-      });
-      done = std::min(0.9, done + 0.9 * share);
-      if (!finished)
+      sampleSupport(field, options, integral, result);
+      if (result.aborted || !result.error.empty())
+      {
+        return result;
+      }
+    }
+    else
+    {
+      double runTarget = target >= 4000.0 ? target / 4.0 : target;
+      double epsilon = std::sqrt(integral / runTarget);
+      double done = 0.0;
+      std::unique_ptr<Refinement> refinement;
+      std::unordered_set<const void*> drop; // boundary samples dropped from the last run
+      for (int run = 0; run < 5; ++run)
+      {
+        refinement = std::make_unique<Refinement>(field, options, epsilon);
+        ++result.refinementRuns;
+        const double share = runTarget / (target * 2.2); // rough share of the total work
+        const bool finished = refinement->run([&](long long count) {
+          return !options.progress ||
+            options.progress(std::min(0.9, done + 0.9 * share * count / runTarget));
+        });
+        done = std::min(0.9, done + 0.9 * share);
+        if (!finished)
+        {
+          result.aborted = true;
+          return result;
+        }
+        drop = boundaryToDrop(refinement->triangulation(), field);
+        const double count =
+          static_cast<double>(refinement->triangulation().number_of_vertices() - drop.size());
+        result.epsilon = epsilon;
+        if (refinement->capped())
+        {
+          break;
+        }
+        epsilon *= std::sqrt(count / target);
+        if (runTarget == target && std::abs(count / target - 1.0) <= 0.08)
+        {
+          break;
+        }
+        runTarget = target;
+      }
+      result.capped = refinement->capped();
+      const DT& dt = refinement->triangulation();
+      std::unordered_set<const void*> hull;
+      for (VertexHandle v : hullVertices(dt))
+      {
+        hull.insert(&*v);
+      }
+      std::vector<char> onBoundary;
+      for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v)
+      {
+        if (!drop.count(&*v))
+        {
+          result.samples.push_back(toVec(v->point()));
+          onBoundary.push_back(hull.count(&*v) ? 1 : 0);
+        }
+      }
+      std::string error;
+      const auto source = field.makeSource(error);
+      if (!source)
+      {
+        result.error = error;
+        return result;
+      }
+      // Lloyd steps even out the masses of well-resolved densities, but on a density that varies
+      // faster than the samples can follow (a conformal image with singular corners sampled by a
+      // few hundred points) they can make things worse: when the relaxed masses spread by more
+      // than 0.3, the unrelaxed samples are tried too and the more even set is kept (Uniform mode
+      // always relaxes: it is a sampling of the area).
+      const std::vector<Vec2> refined = result.samples;
+      std::vector<Vec2> relaxed = refined;
+      if (!relax(field, options, relaxed, onBoundary, error))
+      {
+        result.error = error;
+        return result;
+      }
+      if (options.progress && !options.progress(0.9))
       {
         result.aborted = true;
         return result;
       }
-      drop = boundaryToDrop(refinement->triangulation(), field);
-      const double count =
-        static_cast<double>(refinement->triangulation().number_of_vertices() - drop.size());
-      result.epsilon = epsilon;
-      if (refinement->capped())
-      {
-        break;
-      }
-      epsilon *= std::sqrt(count / target);
-      if (runTarget == target && std::abs(count / target - 1.0) <= 0.08)
-      {
-        break;
-      }
-      runTarget = target;
+      adoptCandidate(result, finishCandidate(field, options, *source, relaxed, result.sourceMass),
+        options.mode == SamplingMode::Adaptive,
+        [&] { return finishCandidate(field, options, *source, refined, result.sourceMass); });
     }
-    result.capped = refinement->capped();
-    const DT& dt = refinement->triangulation();
-    std::unordered_set<const void*> hull;
-    for (VertexHandle v : hullVertices(dt))
-    {
-      hull.insert(&*v);
-    }
-    std::vector<char> onBoundary;
-    for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v)
-    {
-      if (!drop.count(&*v))
-      {
-        result.samples.push_back(toVec(v->point()));
-        onBoundary.push_back(hull.count(&*v) ? 1 : 0);
-      }
-    }
-    std::string error;
-    const auto source = field.makeSource(error);
-    if (!source)
-    {
-      result.error = error;
-      return result;
-    }
-    // Lloyd steps even out the masses of well-resolved densities, but on a density that varies
-    // faster than the samples can follow (a conformal image with singular corners sampled by a
-    // few hundred points) they can make things worse: when the relaxed masses spread by more
-    // than 0.3, the unrelaxed samples are tried too and the more even set is kept (Uniform mode
-    // always relaxes: it is a sampling of the area).
-    const std::vector<Vec2> refined = result.samples;
-    std::vector<Vec2> relaxed = refined;
-    if (!relax(field, options, relaxed, onBoundary, error))
-    {
-      result.error = error;
-      return result;
-    }
-    if (options.progress && !options.progress(0.9))
-    {
-      result.aborted = true;
-      return result;
-    }
-    Candidate best = finishCandidate(field, options, *source, relaxed, result.sourceMass);
-    result.relaxed = true;
-    if (options.mode == SamplingMode::Adaptive && best.coefficientOfVariation > 0.3)
-    {
-      Candidate unrelaxed = finishCandidate(field, options, *source, refined, result.sourceMass);
-      if (unrelaxed.coefficientOfVariation < best.coefficientOfVariation)
-      {
-        best = std::move(unrelaxed);
-        result.relaxed = false;
-      }
-    }
-    result.secondsMasses = best.secondsMasses;
-    result.samples = std::move(best.samples);
-    result.triangles = std::move(best.triangles);
-    result.mass = std::move(best.mass);
-    result.massCoefficientOfVariation = best.coefficientOfVariation;
     result.secondsRefinement = secondsSince(t0) - result.secondsMasses;
     const double reached = static_cast<double>(result.samples.size());
     if (!result.capped && std::abs(reached / target - 1.0) > 0.1)
@@ -689,3 +1244,4 @@ SamplerResult sampleDensity(const DensityField& field, const SamplerOptions& opt
 }
 
 } // namespace otparam
+

@@ -11,6 +11,8 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <unordered_map>
+#include <unordered_set>
 
 namespace otparam
 {
@@ -121,10 +123,45 @@ std::unique_ptr<DensityField> DensityField::create(const std::vector<Vec2>& poin
       return nullptr;
     }
     const double area = 0.5 * twice;
-    field->Area += area;
     field->Integral += perPoint.empty()
       ? area * perTriangle[t]
       : area * (perPoint[tri[0]] + perPoint[tri[1]] + perPoint[tri[2]]) / 3.0;
+  }
+  // The domain is the density's support: triangles where it vanishes identically are left out,
+  // so that a density that is zero on parts of the input gives a domain with holes or several
+  // components, sampled (boundaries included) only where there is mass.
+  {
+    std::vector<Triangle> support;
+    std::vector<double> supportValues;
+    for (size_t t = 0; t < field->Triangles.size(); ++t)
+    {
+      const Triangle& tri = field->Triangles[t];
+      const bool zero = perPoint.empty()
+        ? perTriangle[t] == 0.0
+        : perPoint[tri[0]] == 0.0 && perPoint[tri[1]] == 0.0 && perPoint[tri[2]] == 0.0;
+      if (!zero)
+      {
+        support.push_back(tri);
+        if (!perTriangle.empty())
+        {
+          supportValues.push_back(perTriangle[t]);
+        }
+      }
+    }
+    field->Triangles = std::move(support);
+    if (!perTriangle.empty())
+    {
+      field->PerTriangle = std::move(supportValues);
+    }
+    std::fill(used.begin(), used.end(), 0);
+    for (const Triangle& tri : field->Triangles)
+    {
+      for (int v : tri)
+      {
+        used[v] = 1;
+      }
+      field->Area += 0.5 * cross(points[tri[1]] - points[tri[0]], points[tri[2]] - points[tri[0]]);
+    }
   }
   // Once every triangle is counter-clockwise, a tiling uses each directed edge at most once: a
   // repeated one means overlapping triangles (which the area check below could miss when a
@@ -181,25 +218,27 @@ std::unique_ptr<DensityField> DensityField::create(const std::vector<Vec2>& poin
     field->HullIds.push_back(static_cast<int>(hull[k]));
     hullArea += 0.5 * cross(a, b);
   }
-  // Triangles that tile their convex hull exactly: anything else is a hole, a gap between
-  // components, a concavity or an overlap (target supports of that kind are a later feature).
-  if (std::abs(hullArea - field->Area) > 1e-9 * hullArea)
+  // Triangles that tile their convex hull exactly make a convex domain; anything else has holes,
+  // several components or concavities, and its boundary is made of the loops of edges that
+  // belong to one triangle only.
+  field->Convex = std::abs(hullArea - field->Area) <= 1e-9 * hullArea;
+  if (field->Convex)
   {
-    msg << "the triangles must tile a convex region without holes, gaps or overlaps (one "
-           "convex component), but their total area "
-        << field->Area << " differs from the area of their convex hull " << hullArea;
-    error = msg.str();
+    field->Loops = { field->Hull };
+  }
+  else if (!field->traceBoundaryLoops(error))
+  {
     return nullptr;
   }
-  field->UnitDisk = true;
+  field->UnitDisk = field->Convex;
   for (const Vec2& p : field->Hull)
   {
     // 1e-6: a disk whose points were stored in single precision (VTK's default) is still one.
     field->UnitDisk = field->UnitDisk && std::abs(norm(p) - 1.0) <= 1e-6;
   }
 
-  std::vector<BoxTree::Item> triangleBoxes(triangles.size());
-  for (size_t t = 0; t < triangles.size(); ++t)
+  std::vector<BoxTree::Item> triangleBoxes(field->Triangles.size());
+  for (size_t t = 0; t < field->Triangles.size(); ++t)
   {
     const Triangle& tri = field->Triangles[t];
     BoxTree::Item& box = triangleBoxes[t];
@@ -251,18 +290,74 @@ int DensityField::locate(Vec2 x) const
   return -1;
 }
 
-double DensityField::value(Vec2 x) const
+bool DensityField::traceBoundaryLoops(std::string& error)
 {
-  int t = locate(x);
-  if (t < 0)
+  // Directed edges of counter-clockwise triangles whose twin is absent: the outer boundaries
+  // run counter-clockwise, the holes clockwise.
+  std::vector<std::pair<int, int>> directed;
+  for (const Triangle& tri : Triangles)
   {
-    // Outside (e.g. between the inscribed polygon and the circle): use the nearest boundary
-    // point of the domain.
-    Vec2 best = Hull.front();
-    double bestDistance = std::numeric_limits<double>::infinity();
-    for (size_t k = 0; k < Hull.size(); ++k)
+    for (int k = 0; k < 3; ++k)
     {
-      const Vec2 p = closestOnSegment(x, Hull[k], Hull[(k + 1) % Hull.size()]);
+      directed.emplace_back(tri[k], tri[(k + 1) % 3]);
+    }
+  }
+  std::sort(directed.begin(), directed.end());
+  std::unordered_map<int, int> next; // boundary vertex -> the next one along its loop
+  for (const auto& [from, to] : directed)
+  {
+    if (std::binary_search(directed.begin(), directed.end(), std::make_pair(to, from)))
+    {
+      continue;
+    }
+    if (!next.emplace(from, to).second)
+    {
+      std::ostringstream msg;
+      msg << "the domain's boundary touches itself at point " << from
+          << " (two boundary loops or components meet in one point); separate them";
+      error = msg.str();
+      return false;
+    }
+  }
+  std::unordered_set<int> done;
+  for (const auto& start : next)
+  {
+    if (done.count(start.first))
+    {
+      continue;
+    }
+    std::vector<Vec2> loop;
+    int v = start.first;
+    do
+    {
+      done.insert(v);
+      loop.push_back(Points[v]);
+      const auto it = next.find(v);
+      if (it == next.end())
+      {
+        error = "the domain's boundary is not made of closed loops (inconsistent triangles)";
+        return false;
+      }
+      v = it->second;
+    } while (v != start.first && loop.size() <= next.size());
+    Loops.push_back(std::move(loop));
+  }
+  // A fixed order (the map's is not): the loop with the lowest first point first.
+  std::sort(Loops.begin(), Loops.end(), [](const std::vector<Vec2>& a, const std::vector<Vec2>& b) {
+    return a.front().x < b.front().x || (a.front().x == b.front().x && a.front().y < b.front().y);
+  });
+  return true;
+}
+
+Vec2 DensityField::nearestBoundaryPoint(Vec2 x) const
+{
+  Vec2 best = Hull.front();
+  double bestDistance = std::numeric_limits<double>::infinity();
+  for (const std::vector<Vec2>& loop : Loops)
+  {
+    for (size_t k = 0; k < loop.size(); ++k)
+    {
+      const Vec2 p = closestOnSegment(x, loop[k], loop[(k + 1) % loop.size()]);
       const double d = norm(p - x);
       if (d < bestDistance)
       {
@@ -270,11 +365,27 @@ double DensityField::value(Vec2 x) const
         best = p;
       }
     }
-    x = best;
+  }
+  return best;
+}
+
+bool DensityField::contains(Vec2 x) const
+{
+  return locate(x) >= 0;
+}
+
+double DensityField::value(Vec2 x) const
+{
+  int t = locate(x);
+  if (t < 0)
+  {
+    // Outside (e.g. between the inscribed polygon and the circle): use the nearest boundary
+    // point of the domain.
+    x = nearestBoundaryPoint(x);
     t = locate(x);
     if (t < 0)
     {
-      return 0.0; // unreachable for a convex tiling; keeps the caller well-defined
+      return 0.0; // unreachable for a tiling; keeps the caller well-defined
     }
   }
   if (!PerTriangle.empty())
@@ -363,7 +474,7 @@ std::unique_ptr<SourceMeasure> DensityField::makeSource(std::string& error, doub
       add(a, apex, b, fa, 0.5 * (fa + fb), fb);
     }
   }
-  return makeTriangulatedSource(points, triangles, density, error, true);
+  return makeTriangulatedSource(points, triangles, density, error, true, !Convex);
 }
 
 } // namespace otparam

@@ -20,8 +20,10 @@ class DensityField
 public:
   // perPoint: one value per point (piecewise linear), or perTriangle: one per triangle
   // (piecewise constant); exactly one of the two is non-empty. Values must be finite and >= 0,
-  // not all zero. The triangles must tile a convex region without overlaps. Returns nullptr and
-  // sets error otherwise (the message names the offending ids).
+  // not all zero. The domain is the support: the triangles where the density is not identically
+  // zero. They must not overlap; the domain may be non-convex, have holes and several
+  // components, as long as its boundary loops do not touch. Returns nullptr and sets error
+  // otherwise (the message names the offending ids).
   static std::unique_ptr<DensityField> create(const std::vector<Vec2>& points,
     const std::vector<Triangle>& triangles, const std::vector<double>& perPoint,
     const std::vector<double>& perTriangle, std::string& error);
@@ -35,8 +37,17 @@ public:
   double integral() const { return Integral; }
   double area() const { return Area; }
 
-  // The domain's boundary, counter-clockwise: the input's convex hull corners.
+  // The corners of the domain's convex hull, counter-clockwise.
   const std::vector<Vec2>& boundary() const { return Hull; }
+  // True when the domain is its convex hull (one convex component).
+  bool isConvex() const { return Convex; }
+  // The domain's boundary loops (the hull alone for a convex domain): outer boundaries
+  // counter-clockwise, holes clockwise, so the domain is always on the left.
+  const std::vector<std::vector<Vec2>>& boundaryLoops() const { return Loops; }
+  // True when x lies in one of the domain's triangles (up to rounding).
+  bool contains(Vec2 x) const;
+  // The point of the domain's boundary loops nearest to x.
+  Vec2 nearestBoundaryPoint(Vec2 x) const;
   // True when every boundary point of the input lies on the unit circle (to 1e-6): the domain
   // is then treated as the unit disk (boundary samples on the circle, source mass pi).
   bool isUnitDisk() const { return UnitDisk; }
@@ -54,12 +65,15 @@ public:
 private:
   DensityField() = default;
   int locate(Vec2 x) const; // triangle containing x, or -1
+  bool traceBoundaryLoops(std::string& error);
 
   std::vector<Vec2> Points;
   std::vector<Triangle> Triangles; // counter-clockwise
   std::vector<double> PerPoint, PerTriangle;
   std::vector<Vec2> Hull;
   std::vector<int> HullIds; // input point id of each hull corner
+  std::vector<std::vector<Vec2>> Loops;
+  bool Convex = true;
   bool UnitDisk = false;
   double Integral = 0.0, Area = 0.0;
   BoxTree TriangleTree;          // item = triangle, value = PerTriangle (0 if per point)

@@ -230,23 +230,47 @@ void PowerDiagram::cell(int i, Vec2 lo, Vec2 hi, PowerCell& out) const
 void PowerDiagram::ringCell(int i, Vec2 lo, Vec2 hi, PowerCell& out) const
 {
   const int begin = Offsets[i], m = Offsets[i + 1] - begin;
-  // Walk from the first finite face after an infinite one: the infinite faces of a hull
-  // Dirac's (unbounded) cell then come last.
-  int start = 0;
-  bool unbounded = false;
+  const Vec2 center = 0.5 * (lo + hi);
+  const double boxRadius = 0.5 * norm(hi - lo);
+  // A nearly flat hull face (three boundary samples on one straight edge, collinear up to
+  // rounding) has its power vertex ~1e14 away: kept, it would wreck every integral of the cell
+  // to cancellation. Far outside the box, such a face is treated like an infinite one: inside
+  // the box the cell is the same, bounded by the same two bisectors.
+  auto farFace = [&](int k) {
+    const int f = RingFace[begin + k];
+    return f < 0 || norm(PowerVertices[f] - center) > 64.0 * boxRadius + 1.0;
+  };
+  // Walk from the first near face after a far or infinite one: the far and infinite faces of a
+  // hull Dirac's (unbounded) cell then come last. More than one such run does not happen for a
+  // regular triangulation (flat faces lie on the hull, next to its infinite faces); if it did,
+  // only infinite faces are left out.
+  int start = 0, runs = 0;
   for (int k = 0; k < m; ++k)
+  {
+    if (!farFace(k) && farFace((k + m - 1) % m))
+    {
+      start = runs++ == 0 ? k : start;
+    }
+  }
+  bool useFar = runs == 1;
+  bool unbounded = false;
+  for (int k = 0; k < m && !useFar; ++k)
   {
     if (RingFace[begin + k] >= 0 && RingFace[begin + (k + m - 1) % m] < 0)
     {
       start = k;
-      unbounded = true;
       break;
     }
+  }
+  auto skipped = [&](int k) { return useFar ? farFace(k) : RingFace[begin + k] < 0; };
+  for (int k = 0; k < m; ++k)
+  {
+    unbounded = unbounded || skipped(k);
   }
   for (int s = 0; s < m; ++s)
   {
     const int k = begin + (start + s) % m;
-    if (RingFace[k] >= 0)
+    if (!skipped((start + s) % m))
     {
       out.vertices.push_back(PowerVertices[RingFace[k]]);
       out.neighbor.push_back(Adjacency[k]);
@@ -270,8 +294,6 @@ void PowerDiagram::ringCell(int i, Vec2 lo, Vec2 hi, PowerCell& out) const
   const Vec2 inDir = direction(inNeighbor);
   // Each ray's far point depends only on its start (shared with the neighbour's cell) and the
   // box, so that both cells along it compute the same segment.
-  const Vec2 center = 0.5 * (lo + hi);
-  const double boxRadius = 0.5 * norm(hi - lo);
   const double farOut = 2.0 * (boxRadius + norm(last - center)) + 1.0;
   const double farIn = 2.0 * (boxRadius + norm(first - center)) + 1.0;
   const double a0 = std::atan2(outDir.y, outDir.x);
@@ -282,7 +304,8 @@ void PowerDiagram::ringCell(int i, Vec2 lo, Vec2 hi, PowerCell& out) const
   }
   out.vertices.push_back(last + farOut * outDir);
   out.neighbor.push_back(-1);
-  const int steps = static_cast<int>(std::ceil((a1 - a0) / 1.0));
+  // Rays that turn by more than half a turn meet (at a far face's vertex): no arc between them.
+  const int steps = a1 - a0 > 3.14159265358979323846 ? 1 : static_cast<int>(std::ceil((a1 - a0) / 1.0));
   for (int t = 1; t < steps; ++t)
   {
     const double a = a0 + (a1 - a0) * t / steps;

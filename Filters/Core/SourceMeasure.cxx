@@ -581,7 +581,7 @@ std::unique_ptr<SourceMeasure> makeUnitDiskSource()
 
 std::unique_ptr<SourceMeasure> makeTriangulatedSource(const std::vector<Vec2>& points,
   const std::vector<Triangle>& triangles, const std::vector<double>& density, std::string& error,
-  bool allowZeroDensity)
+  bool allowZeroDensity, bool allowNonConvex)
 {
   error.clear();
   if (triangles.empty())
@@ -668,7 +668,7 @@ std::unique_ptr<SourceMeasure> makeTriangulatedSource(const std::vector<Vec2>& p
     hullArea += cross(src->hull[k] - src->hull[0], src->hull[(k + 1) % src->hull.size()] - src->hull[0]);
   }
   hullArea *= 0.5;
-  if (std::abs(hullArea - area) > 1e-9 * hullArea)
+  if (!allowNonConvex && std::abs(hullArea - area) > 1e-9 * hullArea)
   {
     std::ostringstream s;
     s << "the source domain is not convex (or its triangles overlap): triangle area " << area

@@ -56,10 +56,12 @@ std::unique_ptr<SourceMeasure> makeUnitDiskSource();
 // for density 1. Returns nullptr and sets error when the domain is empty, not convex, has
 // degenerate or inverted... triangles, or a density that is not finite and positive (or, with
 // allowZeroDensity, negative: the sampler integrates densities that vanish on parts of the
-// domain; an OT source must not).
+// domain; an OT source must not). With allowNonConvex, any tiling is accepted (the sampler
+// integrates over supports with holes; only cell integrals are then meaningful, not the
+// clipped boundaries or the inner disk).
 std::unique_ptr<SourceMeasure> makeTriangulatedSource(const std::vector<Vec2>& points,
   const std::vector<Triangle>& triangles, const std::vector<double>& density, std::string& error,
-  bool allowZeroDensity = false);
+  bool allowZeroDensity = false, bool allowNonConvex = false);
 
 } // namespace otparam
 

@@ -145,11 +145,13 @@ TEST(AdaptiveSampler, PerTriangleDensityAndPolygonDomain)
 TEST(AdaptiveSampler, RejectsWhatItCannotSample)
 {
   std::string error;
-  // An L-shape: not convex.
-  const std::vector<Vec2> l = { { 0, 0 }, { 2, 0 }, { 2, 1 }, { 1, 1 }, { 1, 2 }, { 0, 2 } };
-  const std::vector<Triangle> lt = { { 0, 1, 2 }, { 0, 2, 3 }, { 0, 3, 4 }, { 0, 4, 5 } };
-  EXPECT_EQ(DensityField::create(l, lt, std::vector<double>(6, 1.0), {}, error), nullptr);
-  EXPECT_NE(error.find("convex"), std::string::npos) << error;
+  // Two squares sharing one corner: the boundary touches itself there.
+  const std::vector<Vec2> bow = { { 0, 0 }, { 1, 0 }, { 1, 1 }, { 0, 1 }, { 2, 1 }, { 2, 2 },
+    { 1, 2 } };
+  const std::vector<Triangle> bowTriangles = { { 0, 1, 2 }, { 0, 2, 3 }, { 2, 4, 5 },
+    { 2, 5, 6 } };
+  EXPECT_EQ(DensityField::create(bow, bowTriangles, std::vector<double>(7, 1.0), {}, error), nullptr);
+  EXPECT_NE(error.find("touches itself at point 2"), std::string::npos) << error;
   // Negative, NaN and all-zero densities.
   const PlanarMesh disk = makeDisk(3);
   std::vector<double> values(disk.points.size(), 1.0);
@@ -236,3 +238,168 @@ INSTANTIATE_TEST_SUITE_P(AdaptiveSampler, ConformalImages,
     std::string name = info.param;
     return name.substr(0, name.find('.'));
   });
+
+// Supports that are not convex (method.md's complicated supports): an annulus (a hole), two
+// squares apart (two components), an L (a concave corner), and a square whose density vanishes
+// on a band (the support is what is sampled). Every sample lies in the support, every triangle
+// of the output inside it, the masses sum to its area and are even.
+PlanarMesh polarGrid(double innerRadius, double outerRadius, double a0, double a1, int rings,
+  int sectors, bool closed)
+{
+  PlanarMesh mesh;
+  const int columns = closed ? sectors : sectors + 1;
+  for (int k = 0; k <= rings; ++k)
+  {
+    for (int j = 0; j < columns; ++j)
+    {
+      const double r = innerRadius + (outerRadius - innerRadius) * k / rings;
+      const double a = a0 + (a1 - a0) * j / sectors;
+      mesh.points.push_back({ r * std::cos(a), r * std::sin(a) });
+    }
+  }
+  for (int k = 0; k < rings; ++k)
+  {
+    for (int j = 0; j < sectors; ++j)
+    {
+      const int a = k * columns + j, b = k * columns + (j + 1) % columns;
+      mesh.triangles.push_back({ a, a + columns, b + columns });
+      mesh.triangles.push_back({ a, b + columns, b });
+    }
+  }
+  return mesh;
+}
+
+PlanarMesh squareGrid(Vec2 lo, double size, int cells, const std::function<bool(Vec2)>& keep)
+{
+  PlanarMesh mesh;
+  for (int i = 0; i <= cells; ++i)
+  {
+    for (int j = 0; j <= cells; ++j)
+    {
+      mesh.points.push_back(lo + Vec2{ size * j / cells, size * i / cells });
+    }
+  }
+  for (int i = 0; i < cells; ++i)
+  {
+    for (int j = 0; j < cells; ++j)
+    {
+      const int a = i * (cells + 1) + j;
+      if (keep(lo + Vec2{ size * (j + 0.5) / cells, size * (i + 0.5) / cells }))
+      {
+        mesh.triangles.push_back({ a, a + 1, a + cells + 2 });
+        mesh.triangles.push_back({ a, a + cells + 2, a + cells + 1 });
+      }
+    }
+  }
+  return mesh;
+}
+
+struct SupportCase
+{
+  const char* name;
+  PlanarMesh mesh;
+  std::vector<double> density; // per triangle; empty: 1
+  size_t loops;
+};
+
+class Supports : public ::testing::TestWithParam<int>
+{
+};
+
+SupportCase supportCase(int which)
+{
+  constexpr double Pi = 3.14159265358979323846;
+  switch (which)
+  {
+    case 0:
+    {
+      const PlanarMesh m = polarGrid(0.4, 1.0, 0.0, 2.0 * Pi, 8, 96, true);
+      return { "annulus", m, {}, 2 };
+    }
+    case 1:
+    {
+      // Two squares 0.4 apart in one grid: the cells between them are left out.
+      const PlanarMesh m = squareGrid({ -1.0, -0.5 }, 2.0, 20,
+        [](Vec2 c) { return std::abs(c.x) > 0.2 && std::abs(c.y) < 0.5; });
+      return { "two squares", m, {}, 2 };
+    }
+    case 2:
+    {
+      const PlanarMesh m = squareGrid({ 0.0, 0.0 }, 2.0, 16,
+        [](Vec2 c) { return c.x < 1.0 || c.y < 1.0; });
+      return { "L", m, {}, 1 };
+    }
+    default:
+    {
+      // A square whose density is zero on the band |y| < 0.3 (per triangle).
+      PlanarMesh m = squareGrid({ -1.0, -1.0 }, 2.0, 20, [](Vec2) { return true; });
+      std::vector<double> density;
+      for (const Triangle& t : m.triangles)
+      {
+        const double y = (m.points[t[0]].y + m.points[t[1]].y + m.points[t[2]].y) / 3.0;
+        density.push_back(std::abs(y) < 0.3 ? 0.0 : 1.0);
+      }
+      return { "band of zero density", m, density, 2 };
+    }
+  }
+}
+
+TEST_P(Supports, SamplesOnlyTheSupport)
+{
+  SupportCase c = supportCase(GetParam());
+  // Degenerate triangles of the polar grid's centre (r = 0) are dropped.
+  std::vector<Triangle> triangles;
+  std::vector<double> density;
+  for (size_t t = 0; t < c.mesh.triangles.size(); ++t)
+  {
+    const Triangle& tri = c.mesh.triangles[t];
+    const Vec2 a = c.mesh.points[tri[0]], b = c.mesh.points[tri[1]], d = c.mesh.points[tri[2]];
+    if (std::abs(cross(b - a, d - a)) > 1e-12)
+    {
+      triangles.push_back(tri);
+      density.push_back(c.density.empty() ? 1.0 : c.density[t]);
+    }
+  }
+  double area = 0.0;
+  for (size_t t = 0; t < triangles.size(); ++t)
+  {
+    const Triangle& tri = triangles[t];
+    area += density[t] > 0.0
+      ? 0.5 * std::abs(cross(c.mesh.points[tri[1]] - c.mesh.points[tri[0]],
+                c.mesh.points[tri[2]] - c.mesh.points[tri[0]]))
+      : 0.0;
+  }
+  std::string error;
+  const auto field = DensityField::create(c.mesh.points, triangles, {}, density, error);
+  ASSERT_NE(field, nullptr) << c.name << ": " << error;
+  EXPECT_FALSE(field->isConvex()) << c.name;
+  EXPECT_EQ(field->boundaryLoops().size(), c.loops) << c.name;
+  for (long long target : { 500LL, 3000LL })
+  {
+    SamplerOptions options;
+    options.numberOfSamples = target;
+    const SamplerResult r = sampleDensity(*field, options);
+    ASSERT_EQ(r.error, "") << c.name;
+    EXPECT_NEAR(static_cast<double>(r.samples.size()), static_cast<double>(target), 0.1 * target)
+      << c.name;
+    EXPECT_NEAR(r.sourceMass, area, 1e-9 * area) << c.name;
+    double total = 0.0;
+    for (size_t i = 0; i < r.samples.size(); ++i)
+    {
+      EXPECT_TRUE(field->contains(r.samples[i])) << c.name << ": sample " << i << " outside";
+      EXPECT_GT(r.mass[i], 0.0) << c.name << ": sample " << i;
+      total += r.mass[i];
+    }
+    EXPECT_NEAR(total, area, 1e-9 * area) << c.name;
+    for (const Triangle& t : r.triangles)
+    {
+      const Vec2 centroid = (1.0 / 3.0) * (r.samples[t[0]] + r.samples[t[1]] + r.samples[t[2]]);
+      EXPECT_TRUE(field->contains(centroid)) << c.name << ": a triangle outside the support";
+    }
+    // Curved boundaries: samples put back on the boundary after the repair lose a few degrees.
+    EXPECT_GE(r.minimumAngleDegrees, 25.0) << c.name;
+    EXPECT_LT(r.massCoefficientOfVariation, target < 1000 ? 0.35 : 0.25) << c.name;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(AdaptiveSampler, Supports, ::testing::Values(0, 1, 2, 3));
