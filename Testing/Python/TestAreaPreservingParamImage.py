@@ -23,12 +23,9 @@ from area_preserving_demo import (make_hand_like_surface, render_brenier_legendr
                                   render_histograms, run_stages)
 from ot_solver_demo import render_png as render_power_diagram  # noqa: E402
 from otparam import vtkAreaPreservingParam  # noqa: E402
-from otparam_test_utils import check, field_value, finish  # noqa: E402
-from vtkmodules.test import Testing  # noqa: E402
+from otparam_test_utils import check, check_image, field_value, finish, image_test_arguments  # noqa: E402,E501
 
-baseline_dir, temp_dir = sys.argv[1], sys.argv[2]
-Testing.VTK_TEMP_DIR = temp_dir
-os.makedirs(temp_dir, exist_ok=True)
+baseline_dir, _ = image_test_arguments()
 
 surface = make_hand_like_surface()
 param = vtkAreaPreservingParam()
@@ -49,9 +46,6 @@ pictures = {
     "brenier": render_brenier_legendre(transport, None, 800),
 }
 for name, window in pictures.items():
-    baseline = os.path.join(baseline_dir, f"TestAreaPreservingParamImage_{name}.png")
-    try:
-        Testing.compareImage(window, baseline, threshold=0.15)
-    except RuntimeError as error:
-        check(False, f"{name}: image differs from {baseline}: {error}")
+    check_image(window, os.path.join(baseline_dir, f"TestAreaPreservingParamImage_{name}.png"),
+                f"{name}: ")
 finish()

@@ -15,12 +15,9 @@ sys.path.insert(0, os.path.join(HERE, "..", "..", "Examples"))
 
 from conformal_map_demo import make_default_surface, render  # noqa: E402
 from otparam import vtkConformalDiskMap  # noqa: E402
-from otparam_test_utils import check, field_value, finish  # noqa: E402
-from vtkmodules.test import Testing  # noqa: E402
+from otparam_test_utils import check, check_image, field_value, finish, image_test_arguments  # noqa: E402,E501
 
-baseline, temp_dir = sys.argv[1], sys.argv[2]
-Testing.VTK_TEMP_DIR = temp_dir
-os.makedirs(temp_dir, exist_ok=True)
+baseline, _ = image_test_arguments()
 
 surface = make_default_surface()
 mapper = vtkConformalDiskMap()
@@ -30,9 +27,5 @@ disk = mapper.GetOutput()
 check(field_value(disk, "FlippedTriangles") == 0, "no flipped triangle")
 check(field_value(disk, "MeanAngleDistortion") < 0.5, "mean angle distortion below 0.5 degrees")
 
-window = render(surface, disk, size=800)
-try:
-    Testing.compareImage(window, baseline, threshold=0.15)
-except RuntimeError as error:
-    check(False, f"image differs from {baseline}: {error}")
+check_image(render(surface, disk, size=800), baseline)
 finish()

@@ -15,29 +15,14 @@ import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "Examples"))
 
-import otparam  # noqa: E402
+from complicated_supports import transport_onto  # noqa: E402
 from otparam_example_utils import annulus, letter_c, two_half_disks  # noqa: E402
 from otparam_test_utils import check, finish  # noqa: E402
-from vtkmodules.vtkCommonCore import vtkDoubleArray  # noqa: E402
 
 
 def run(shape, samples):
-    density = vtkDoubleArray()
-    density.SetName("AreaDensity")
-    density.SetNumberOfTuples(shape.GetNumberOfPoints())
-    density.Fill(1.0)
-    shape.GetPointData().AddArray(density)
-    sampler = otparam.vtkAdaptiveDensitySampler()
-    sampler.SetInputData(shape)
-    sampler.SetNumberOfSamples(samples)
-    solver = otparam.vtkSemiDiscreteOTSolver()
-    solver.SetInputConnection(sampler.GetOutputPort())
-    solver.Update()
+    sampler, solver = transport_onto(shape, samples)
     return sampler.GetOutput(), solver
-
-
-def inside(shape_test, point):
-    return shape_test(point[0], point[1])
 
 
 def jumps(solver):

@@ -20,6 +20,26 @@ def check(condition, message):
     return condition
 
 
+def image_test_arguments():
+    """(baseline file or directory, temp dir) of a regression-image test, from its command
+    line; VTK's image comparison writes into the temp dir."""
+    import os
+    from vtkmodules.test import Testing
+    baseline, temp_dir = sys.argv[1], sys.argv[2]
+    Testing.VTK_TEMP_DIR = temp_dir
+    os.makedirs(temp_dir, exist_ok=True)
+    return baseline, temp_dir
+
+
+def check_image(window, baseline, label=""):
+    """Compares the window with the baseline PNG (VTK's regression test, threshold 0.15)."""
+    from vtkmodules.test import Testing
+    try:
+        Testing.compareImage(window, baseline, threshold=0.15)
+    except RuntimeError as error:
+        check(False, f"{label}image differs from {baseline}: {error}")
+
+
 def finish():
     if FAILURES:
         print(f"{len(FAILURES)} check(s) failed", flush=True)
