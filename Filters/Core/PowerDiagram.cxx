@@ -236,10 +236,16 @@ void PowerDiagram::ringCell(int i, Vec2 lo, Vec2 hi, PowerCell& out) const
   // rounding) has its power vertex ~1e14 away: kept, it would wreck every integral of the cell
   // to cancellation. Far outside the box, such a face is treated like an infinite one: inside
   // the box the cell is the same, bounded by the same two bisectors.
-  auto farFace = [&](int k) {
+  const double farLimit = 64.0 * boxRadius + 1.0, farLimit2 = farLimit * farLimit;
+  thread_local std::vector<char> far;
+  far.resize(m);
+  for (int k = 0; k < m; ++k)
+  {
     const int f = RingFace[begin + k];
-    return f < 0 || norm(PowerVertices[f] - center) > 64.0 * boxRadius + 1.0;
-  };
+    const Vec2 d = f < 0 ? Vec2{ 0.0, 0.0 } : PowerVertices[f] - center;
+    far[k] = f < 0 || d.x * d.x + d.y * d.y > farLimit2;
+  }
+  auto farFace = [&](int k) { return far[k] != 0; };
   // Walk from the first near face after a far or infinite one: the far and infinite faces of a
   // hull Dirac's (unbounded) cell then come last. More than one such run does not happen for a
   // regular triangulation (flat faces lie on the hull, next to its infinite faces); if it did,
