@@ -529,8 +529,17 @@ int vtkSemiDiscreteOTSolver::RequestData(
       if (input->GetCellType(c) == VTK_TRIANGLE)
       {
         input->GetCellPoints(c, ids);
-        support.push_back({ static_cast<int>(ids->GetId(0)), static_cast<int>(ids->GetId(1)),
-          static_cast<int>(ids->GetId(2)) });
+        // Malformed cells (ids outside the points) cannot be part of the support.
+        bool valid = ids->GetNumberOfIds() == 3;
+        for (vtkIdType k = 0; valid && k < 3; ++k)
+        {
+          valid = ids->GetId(k) >= 0 && ids->GetId(k) < n;
+        }
+        if (valid)
+        {
+          support.push_back({ static_cast<int>(ids->GetId(0)), static_cast<int>(ids->GetId(1)),
+            static_cast<int>(ids->GetId(2)) });
+        }
       }
     }
     const auto jumps = support.empty()

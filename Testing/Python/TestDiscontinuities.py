@@ -125,4 +125,33 @@ segments = jumps(solver)
 check(all(min(a[0], b[0]) >= -0.1 for (a, b), _, _ in segments),
       f"{name}: the jumps lie towards the opening (x >= -0.1)")
 
+# The support is the input's triangles: without triangles it is unknown and port 4 is empty;
+# a malformed triangle (a point id out of range) is left out rather than read.
+import otparam  # noqa: E402
+from vtkmodules.vtkCommonDataModel import vtkPolyData  # noqa: E402
+
+samples, _ = run(annulus(R_IN, R_OUT), 500)
+points_only = vtkPolyData()
+points_only.SetPoints(samples.GetPoints())
+points_only.GetPointData().AddArray(samples.GetPointData().GetArray("Mass"))
+malformed = vtkPolyData()
+malformed.DeepCopy(samples)
+malformed.GetPolys().InsertNextCell(3, (0, 1, samples.GetNumberOfPoints() + 5))
+expected = None
+for name, data in [("points only", points_only), ("with triangles", samples),
+                   ("a malformed triangle", malformed)]:
+    solver = otparam.vtkSemiDiscreteOTSolver()
+    solver.SetInputData(data)
+    solver.Update()
+    count = solver.GetOutput(4).GetNumberOfCells()
+    check(solver.GetOutput(0).GetFieldData().GetArray("Converged").GetValue(0) == 1,
+          f"annulus, {name}: converged")
+    if name == "points only":
+        check(count == 0, f"annulus, {name}: no support, no singularity set ({count})")
+    elif expected is None:
+        expected = count
+        check(count > 0, f"annulus, {name}: a singularity set")
+    else:
+        check(count == expected, f"annulus, {name}: the same singularity set ({count} vs {expected})")
+
 finish()
