@@ -89,10 +89,8 @@ def polar_patch(center, radii, angles, closed):
     for inner, outer in zip(rows, rows[1:]):
         for j in range(columns):
             k = (j + 1) % len(angles)
-            if inner[j] == inner[k]:  # fan around the centre point
-                polys.InsertNextCell(3, (inner[j], outer[j], outer[k]))
-            else:
-                polys.InsertNextCell(3, (inner[j], outer[j], outer[k]))
+            polys.InsertNextCell(3, (inner[j], outer[j], outer[k]))
+            if inner[j] != inner[k]:  # not a fan around the centre point
                 polys.InsertNextCell(3, (inner[j], outer[k], inner[k]))
     patch = vtkPolyData()
     patch.SetPoints(points)

@@ -893,7 +893,7 @@ void sampleSupport(const DensityField& field, const SamplerOptions& options, dou
   double runTarget = target >= 4000.0 ? target / 4.0 : target;
   double epsilon = std::sqrt(integral / runTarget);
   std::unique_ptr<CDT> cdt;
-  std::vector<std::vector<Vec2>> loops;
+  std::vector<std::vector<Vec2>> refinedLoops, loops; // all boundary samples; the kept ones
   double done = 0.0;
   for (int run = 0; run < 5; ++run)
   {
@@ -959,9 +959,10 @@ void sampleSupport(const DensityField& field, const SamplerOptions& options, dou
       result.aborted = true;
       return;
     }
-    loops = thinBoundary(boundaryLoopsOf(*cdt), field);
+    refinedLoops = boundaryLoopsOf(*cdt);
+    loops = thinBoundary(refinedLoops, field);
     size_t dropped = 0;
-    for (const auto& loop : boundaryLoopsOf(*cdt))
+    for (const auto& loop : refinedLoops)
     {
       dropped += loop.size();
     }
@@ -1005,7 +1006,7 @@ void sampleSupport(const DensityField& field, const SamplerOptions& options, dou
   }
   // Interior samples: vertices of domain faces that are not on a boundary loop.
   std::set<std::pair<double, double>> onLoop;
-  for (const auto& loop : boundaryLoopsOf(*cdt))
+  for (const auto& loop : refinedLoops)
   {
     for (const Vec2& v : loop)
     {
