@@ -403,14 +403,65 @@ std::unordered_set<const void*> boundaryToDrop(const DT& dt, const DensityField&
   return drop;
 }
 
-// Lloyd relaxation of the interior samples towards a centroidal Voronoi tessellation for the
-// density g^2 (Adaptive, R * sqrt(g) rule; g^4 for the R * g rule; 1 for Uniform): in 2D such a
-// tessellation has cells of area ~ density^(-1/2) = 1 / g, i.e. of equal g-mass. Delaunay
-// refinement alone leaves triangles between about half and all of the size bound (measured
-// spread of interior masses 0.16 for a constant density); 8 Lloyd steps bring it to 0.09 (32:
-// 0.066; Lloyd converges slowly). Boundary samples stay where they are (on the circle for the
-// unit disk), so their cells stay about half as heavy as interior ones (measured 0.5-0.55).
+// Relaxation of the interior samples towards equal masses: Lloyd steps (each interior sample
+// moves to the centroid of its cell) on power cells whose offsets grow where a cell is too light
+// and shrink where it is too heavy, in the spirit of capacity-constrained Voronoi tessellations
+// (de Goes et al., "Blue noise through optimal transport", 2012).
+// - Plain Lloyd for the density g^2 (a centroidal tessellation for g^2 has cells of area ~ 1/g,
+//   i.e. of equal g-mass) evens out the interior: refinement alone leaves triangles between
+//   half and all of the size bound (spread of interior masses 0.16 for a constant density;
+//   4 steps 0.10, 8 steps 0.09, 32 steps 0.066). But the boundary samples stay on the boundary,
+//   and their cells stay half as heavy as the others (0.5-0.55 of the mean).
+// - The offsets make a light boundary cell push its interior neighbours away and steer the
+//   interior to equal masses directly. Measured with 20000 samples, 4 steps: constant density,
+//   spread 0.117 -> 0.089 (boundary cells 0.56 -> 0.64 of the mean); Gaussian mixture of
+//   contrast 1e6, 0.228 -> 0.215; at no extra cost.
+// - Each offset step is one Jacobi step of the mass equations, its relative mass change clamped
+//   to 50%: unclamped, cells where g varies a lot within one cell (the mixture's tails) were
+//   steered by wrong estimates and swallowed their neighbours. The last step is a plain Lloyd
+//   step: straight after a steered one, the Delaunay triangles are thinner and the angle repair
+//   below had to insert 3x as many samples (722 instead of 224), whose small cells undid the gain.
+// The offsets only steer the positions; the output masses are those of the plain Voronoi cells.
+// The paper's R * g rule (density g^4) gets plain Lloyd steps, as the paper's baseline.
 constexpr int RelaxationSteps = 4;
+constexpr double LargestSteeredMassChange = 0.5;
+// d(cell area)/d(offset) of a cell in a regular triangular lattice: 6 edges of length a / sqrt(3)
+// at distance a.
+constexpr double CellAreaPerOffset = 3.4641016151377544;
+
+// One Jacobi step of "every cell has the mean mass" on the offsets of the power cells measured
+// with the density g^power; equalizedPower 1 equalizes g-masses, 0 areas.
+void steerOffsets(const DensityField& field, double power, double equalizedPower,
+  const CellMeasures& cells, std::vector<double>& offset)
+{
+  const size_t n = offset.size();
+  // Each cell's g-mass and area follow from g at its centroid: exact for a constant density,
+  // first order otherwise.
+  std::vector<double> equalized(n, 0.0), area(n, 0.0);
+  double total = 0.0;
+  // Parallel: one density query (a box-tree search) per cell is the cost of this step.
+#pragma omp parallel for schedule(static) reduction(+ : total)
+  for (long long i = 0; i < static_cast<long long>(n); ++i)
+  {
+    const double g = power > 0.0 ? field.value(cells.centroid[i]) : 1.0;
+    if (g > 0.0 && cells.mass[i] > 0.0)
+    {
+      equalized[i] = cells.mass[i] * std::pow(g, equalizedPower - power);
+      area[i] = cells.mass[i] / std::pow(g, power);
+      total += equalized[i];
+    }
+  }
+  const double mean = total / static_cast<double>(n);
+  for (size_t i = 0; i < n; ++i)
+  {
+    if (equalized[i] > 0.0)
+    {
+      const double change = std::clamp(
+        mean / equalized[i] - 1.0, -LargestSteeredMassChange, LargestSteeredMassChange);
+      offset[i] += change * area[i] / CellAreaPerOffset;
+    }
+  }
+}
 
 bool relax(const DensityField& field, const SamplerOptions& options, std::vector<Vec2>& samples,
   const std::vector<char>& onBoundary, std::string& error)
@@ -425,14 +476,23 @@ bool relax(const DensityField& field, const SamplerOptions& options, std::vector
   {
     return false;
   }
+  const bool steered =
+    !(options.mode == SamplingMode::Adaptive && options.sizeRule == SizeRule::Density);
+  const double equalizedPower = options.mode == SamplingMode::Adaptive ? 1.0 : 0.0;
+  std::vector<double> offset(samples.size(), 0.0);
   std::vector<double> heights(samples.size());
   for (int step = 0; step < RelaxationSteps; ++step)
   {
+    const bool plainStep = !steered || step == RelaxationSteps - 1;
     for (size_t i = 0; i < samples.size(); ++i)
     {
-      heights[i] = 0.5 * dot(samples[i], samples[i]);
+      heights[i] = 0.5 * dot(samples[i], samples[i]) - (plainStep ? 0.0 : offset[i]);
     }
     const CellMeasures cells = computeCellMeasures(*density, samples, heights);
+    if (!plainStep)
+    {
+      steerOffsets(field, power, equalizedPower, cells, offset);
+    }
     for (size_t i = 0; i < samples.size(); ++i)
     {
       // A cell clipped to a non-convex domain can have its centroid outside (across a notch).
@@ -989,7 +1049,10 @@ void sampleSupport(const DensityField& field, const SamplerOptions& options, dou
       break;
     }
     epsilon *= std::sqrt(count / target);
-    if (runTarget == target && std::abs(count / target - 1.0) <= 0.08)
+    // Tighter than the convex path's 8%: the angle repair after the relaxation adds up to 5%
+    // more samples along polygonal boundaries (band of zero density, 500 samples: 539 -> 565),
+    // and a run here costs little.
+    if (runTarget == target && std::abs(count / target - 1.0) <= 0.04)
     {
       break;
     }
