@@ -25,7 +25,8 @@ using WeightedPoint = Regular::Weighted_point;
 using BarePoint = Regular::Bare_point;
 } // namespace
 
-void PowerDiagram::build(const std::vector<Vec2>& diracs, const std::vector<Height>& heights)
+void PowerDiagram::build(
+  const std::vector<Vec2>& diracs, const std::vector<Height>& heights, bool onlyWhenNoneHidden)
 {
   const int n = static_cast<int>(diracs.size());
   Sites = diracs;
@@ -46,6 +47,16 @@ void PowerDiagram::build(const std::vector<Vec2>& diracs, const std::vector<Heig
     Hidden[v->info()] = 0;
   }
   HiddenCount = static_cast<int>(std::count(Hidden.begin(), Hidden.end(), 1));
+  if (onlyWhenNoneHidden && HiddenCount > 0)
+  {
+    Triangles.clear();
+    PowerVertices.clear();
+    RingFace.clear();
+    Offsets.assign(n + 1, 0);
+    Adjacency.clear();
+    Dimension = 0;
+    return;
+  }
 
   Triangles.clear();
   PowerVertices.clear();
