@@ -16,7 +16,11 @@ def ensure_display(args):
     if xvfb is None:
         sys.exit("No X display and no xvfb-run: install xvfb or pass --no-picture.")
     os.environ["OTPARAM_UNDER_XVFB"] = "1"
-    os.execv(xvfb, [xvfb, "-a", "-s", "-screen 0 1600x1600x24", sys.executable] + sys.argv)
+    # -a searches for a free display from -n on; starting at a number of our own (not 99 as
+    # every other xvfb-run does) avoids reusing a display whose server is still shutting down.
+    first_display = str(200 + os.getpid() % 300)
+    os.execv(xvfb, [xvfb, "-a", "-n", first_display, "-s", "-screen 0 1600x1600x24",
+                    sys.executable] + sys.argv)
 
 
 def save_png(window, path):

@@ -1,12 +1,12 @@
 #!/bin/sh
 # Runs a paraview.simple script inside the real ParaView GUI on a virtual X server.
 # The GUI's exit code does not reflect the script's, so success is the PASSED file it writes.
-# Usage: run_gui_test.sh <xvfb-run> <paraview> <script> <plugin> <work dir>
+# Usage: run_gui_test.sh <xvfb-run> <first display number> <paraview> <script> <plugin> <work dir>
 set -u
-xvfb_run=$1 paraview=$2 script=$3
-OTPARAM_PLUGIN=$4 OTPARAM_TEST_DIR=$5 OTPARAM_SCREENSHOT=1
+xvfb_run=$1 display=$2 paraview=$3 script=$4
+OTPARAM_PLUGIN=$5 OTPARAM_TEST_DIR=$6 OTPARAM_SCREENSHOT=1
 export OTPARAM_PLUGIN OTPARAM_TEST_DIR OTPARAM_SCREENSHOT
 rm -f "$OTPARAM_TEST_DIR/PASSED"
-"$xvfb_run" -a -s "-screen 0 1280x1024x24" "$paraview" --dr "--script=$script" --exit
+"$xvfb_run" -a -n "$display" -s "-screen 0 1280x1024x24" "$paraview" --dr "--script=$script" --exit
 test -f "$OTPARAM_TEST_DIR/PASSED" || { echo "the GUI script did not pass"; exit 1; }
 echo "GUI script passed; screenshot: $OTPARAM_TEST_DIR/power_diagram.png"
