@@ -103,10 +103,9 @@ void evaluate(const SourceMeasure& source, const std::vector<Vec2>& diracs,
 // True when the trial heights certainly hide a Dirac, found without a triangulation: Dirac i is
 // hidden when its lifted point (y_i, h_i) lies above the plane through the lifted points of
 // three others whose triangle contains y_i (it is then not a vertex of the lower hull). The
-// triangles tried are fans of i's neighbours in the current diagram, where a trial step that
-// empties a cell nearly always does so. A rejected full Newton step then costs ~5 ms instead of
-// a regular triangulation (0.25 s at 1e5 Diracs). Inexact arithmetic: a margin far above the
-// rounding of the test keeps every certificate true; a missed one only costs the triangulation.
+// triangles tried are a fan of i's neighbours in the current diagram, where a trial step that
+// empties a cell nearly always does so. Inexact arithmetic: a margin far above the rounding of
+// the test keeps every certificate true; a missed one only costs the triangulation.
 bool certainlyHidesADirac(
   const PowerDiagram& current, const std::vector<Vec2>& diracs, const std::vector<Height>& trial)
 {
@@ -127,36 +126,36 @@ bool certainlyHidesADirac(
       continue; // hull Diracs: their cells reach infinity
     }
     const Vec2 yi = diracs[i];
-    for (int fan = 0; fan < degree && found == 0; ++fan)
+    // One fan, from the first neighbour: all fans found 32 of the 83 trials at 3e4 Diracs
+    // (contrast 1e4) and this one 27, at a third of the cost (0.37 s instead of 1.17 s).
+    const int a = begin[0];
+    const Vec2 pa = diracs[a];
+    for (int m = 1; m + 1 < degree; ++m)
     {
-      const int a = begin[fan];
-      for (int m = 1; m + 1 < degree; ++m)
+      const int b = begin[m], c = begin[m + 1];
+      const Vec2 pb = diracs[b], pc = diracs[c];
+      const double area = cross(pb - pa, pc - pa);
+      // Thin triangles are skipped: their barycentric coordinates lose too many digits.
+      if (!(area > 1e-6 * (dot(pb - pa, pb - pa) + dot(pc - pa, pc - pa))))
       {
-        const int b = begin[(fan + m) % degree], c = begin[(fan + m + 1) % degree];
-        const Vec2 pa = diracs[a], pb = diracs[b], pc = diracs[c];
-        const double area = cross(pb - pa, pc - pa);
-        // Thin triangles are skipped: their barycentric coordinates lose too many digits.
-        if (!(area > 1e-6 * (dot(pb - pa, pb - pa) + dot(pc - pa, pc - pa))))
-        {
-          continue;
-        }
-        const double la = cross(pb - yi, pc - yi) / area;
-        const double lb = cross(pc - yi, pa - yi) / area;
-        const double lc = 1.0 - la - lb;
-        if (la < 0.0 || lb < 0.0 || lc < 0.0)
-        {
-          continue;
-        }
-        // Height of i above the plane, from differences (neighbours' heights are close).
-        const long double above =
-          -(la * (trial[a] - trial[i]) + lb * (trial[b] - trial[i]) + lc * (trial[c] - trial[i]));
-        const long double scale = std::abs(trial[a]) + std::abs(trial[b]) + std::abs(trial[c]) +
-          std::abs(trial[i]) + 1.0L;
-        if (above > 1e-9L * scale)
-        {
-          ++found;
-          break;
-        }
+        continue;
+      }
+      const double la = cross(pb - yi, pc - yi) / area;
+      const double lb = cross(pc - yi, pa - yi) / area;
+      const double lc = 1.0 - la - lb;
+      if (la < 0.0 || lb < 0.0 || lc < 0.0)
+      {
+        continue;
+      }
+      // Height of i above the plane, from differences (neighbours' heights are close).
+      const long double above =
+        -(la * (trial[a] - trial[i]) + lb * (trial[b] - trial[i]) + lc * (trial[c] - trial[i]));
+      const long double scale = std::abs(trial[a]) + std::abs(trial[b]) + std::abs(trial[c]) +
+        std::abs(trial[i]) + 1.0L;
+      if (above > 1e-9L * scale)
+      {
+        ++found;
+        break;
       }
     }
   }
@@ -501,7 +500,10 @@ void dampedNewton(const SourceMeasure& source, const std::vector<Vec2>& diracs,
       {
         trial[i] = h[i] + lambda * d[i];
       }
-      if (certainlyHidesADirac(diagram, diracs, trial))
+      const auto certifying = Clock::now();
+      const bool hides = certainlyHidesADirac(diagram, diracs, trial);
+      result.secondsTriangulation += secondsSince(certifying);
+      if (hides)
       {
         lambda = lambda == 1.0 ? std::min(0.5, 4.0 * lastStep) : 0.5 * lambda;
         continue;
