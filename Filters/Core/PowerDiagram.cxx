@@ -47,6 +47,15 @@ void PowerDiagram::build(
     Hidden[v->info()] = 0;
   }
   HiddenCount = static_cast<int>(std::count(Hidden.begin(), Hidden.end(), 1));
+  HiddenFace.assign(n, Triangle{ -1, -1, -1 });
+  for (auto v = rt.hidden_vertices_begin(); rt.dimension() == 2 && v != rt.hidden_vertices_end(); ++v)
+  {
+    const auto f = v->face();
+    if (f != Regular::Face_handle() && !rt.is_infinite(f))
+    {
+      HiddenFace[v->info()] = { f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info() };
+    }
+  }
   if (onlyWhenNoneHidden && HiddenCount > 0)
   {
     Triangles.clear();

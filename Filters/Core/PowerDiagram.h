@@ -31,6 +31,9 @@ public:
   // A hidden Dirac has an empty cell in the whole plane.
   bool hidden(int i) const { return Hidden[i] != 0; }
   int hiddenCount() const { return HiddenCount; }
+  // The finite face of the regular triangulation that contains a hidden Dirac's point (its
+  // lifted point lies above that face's plane); {-1, -1, -1} when there is none.
+  Triangle hiddenFace(int i) const { return HiddenFace[i]; }
   // Neighbours of Dirac i in the regular triangulation (one per power edge in the plane;
   // -1 stands for the infinite vertex around hull Diracs).
   const int* neighborsBegin(int i) const { return Adjacency.data() + Offsets[i]; }
@@ -53,6 +56,7 @@ private:
   std::vector<Height> Heights;
   std::vector<int> Offsets, Adjacency;
   std::vector<char> Hidden;
+  std::vector<Triangle> HiddenFace;
   std::vector<Triangle> Triangles;
   int HiddenCount = 0;
 };

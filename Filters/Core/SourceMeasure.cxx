@@ -113,6 +113,7 @@ class UnitDiskSource final : public SourceMeasure
 {
 public:
   double totalMass() const override { return Pi; }
+  bool isUnitDisk() const override { return true; }
   void bounds(Vec2& lo, Vec2& hi) const override
   {
     lo = { -1.0, -1.0 };

@@ -37,6 +37,8 @@ public:
   virtual ~SourceMeasure() = default;
 
   virtual double totalMass() const = 0;
+  // True for the exact unit disk (makeUnitDiskSource), whose geometry some starts rely on.
+  virtual bool isUnitDisk() const { return false; }
   // Axis-aligned box that contains the domain.
   virtual void bounds(Vec2& lo, Vec2& hi) const = 0;
   // A disk inside the domain: where a starting configuration is placed when Diracs lie outside.

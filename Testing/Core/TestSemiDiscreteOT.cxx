@@ -1,11 +1,14 @@
 // The damped Newton solver against closed forms and known transport maps.
+#include "MultiscaleStart.h"
 #include "OTTestProblems.h"
+#include "PowerDiagram.h"
 #include "SemiDiscreteOT.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numeric>
 #include <random>
 
@@ -203,4 +206,43 @@ TEST(SemiDiscreteOT, HighContrastNeedsFewNewtonIterations)
   ASSERT_TRUE(r.converged) << r.message;
   EXPECT_LE(r.iterations, 40);
   EXPECT_LE(r.relativeError, 1e-10);
+}
+
+TEST(SemiDiscreteOT, CoarseToFineStartTakesFewerNewtonIterations)
+{
+  // 3e4 Diracs: one coarse level of 7.5e3 (and the Diracs' hull), solved from the shrunk
+  // Voronoi start.
+  const auto y = randomInDisk(30000, 7);
+  const auto m = mixtureMasses(y, 1e4);
+  auto disk = makeUnitDiskSource();
+  const OTResult plain = solveSemiDiscreteOT(*disk, y, m);
+  OTOptions options;
+  options.coarseToFineStart = true;
+  const OTResult multiscale = solveSemiDiscreteOT(*disk, y, m, options);
+  ASSERT_TRUE(plain.converged) << plain.message;
+  ASSERT_TRUE(multiscale.converged) << multiscale.message;
+  EXPECT_LE(multiscale.relativeError, 1e-10);
+  EXPECT_NEAR(sum(multiscale.cellMass), Pi, 1e-12 * Pi);
+  EXPECT_LT(multiscale.iterations, plain.iterations);
+  std::printf("Newton iterations, 3e4 Diracs of contrast 1e4: default start %d, coarse-to-fine %d\n",
+    plain.iterations, multiscale.iterations);
+}
+
+TEST(MultiscaleStart, UnhidingGivesEveryDiracACell)
+{
+  // Heights that hide most Diracs: random values far above the lower hull's spacing.
+  const auto y = randomInDisk(2000, 8);
+  std::vector<double> nu(y.size(), Pi / y.size());
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> noise(0.0, 0.05);
+  std::vector<Height> h(y.size());
+  for (size_t i = 0; i < y.size(); ++i)
+    h[i] = 0.5L * dot(y[i], y[i]) + noise(rng);
+  PowerDiagram diagram;
+  diagram.build(y, h);
+  ASSERT_GT(diagram.hiddenCount(), 100);
+  auto disk = makeUnitDiskSource();
+  EXPECT_EQ(unhideDiracs(*disk, y, nu, h, diagram), 0);
+  for (size_t i = 0; i < y.size(); ++i)
+    EXPECT_FALSE(diagram.hidden(static_cast<int>(i)));
 }
