@@ -119,7 +119,6 @@ def render_support_figure(sampler, solver, path, size):
         result.GetProperty().SetLineWidth(width)
         if point_size:
             result.GetProperty().SetPointSize(point_size)
-            result.GetProperty().RenderPointsAsSpheresOn()
         return result
 
     def view(renderer, viewport):

@@ -176,6 +176,7 @@ bool coarseToFineHeights(const SourceMeasure& source, const std::vector<Vec2>& d
   OTOptions coarseOptions;
   coarseOptions.tolerance = 1e-3;
   coarseOptions.maxIterations = 100;
+  coarseOptions.coarseToFineStart = true;
   const OTResult coarse = solveSemiDiscreteOT(source, coarseDiracs, coarseMass, coarseOptions);
   if (coarse.heights.size() != static_cast<size_t>(coarseCount) ||
     *std::min_element(coarse.cellMass.begin(), coarse.cellMass.end()) <= 0.0)
