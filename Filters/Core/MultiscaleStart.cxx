@@ -12,6 +12,7 @@
 #include <Eigen/Dense>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numeric>
 #include <random>
@@ -95,13 +96,23 @@ std::vector<int> rowOrder(const std::vector<Vec2>& points)
   return order;
 }
 
+constexpr double Pi = 3.14159265358979323846;
+
+// Barycentric coordinates of y in the triangle (a, b, c).
+std::array<double, 3> barycentric(Vec2 y, Vec2 a, Vec2 b, Vec2 c)
+{
+  const double area = cross(b - a, c - a);
+  const double lb = cross(c - y, a - y) / area, lc = cross(a - y, b - y) / area;
+  return { 1.0 - lb - lc, lb, lc };
+}
+
 // Mean density of the source, for sizing the cells given back to hidden Diracs: its mass over
 // the area of the ellipse inscribed in its box (exact for the disk).
 double meanDensity(const SourceMeasure& source)
 {
   Vec2 lo, hi;
   source.bounds(lo, hi);
-  const double area = 0.25 * 3.14159265358979323846 * (hi.x - lo.x) * (hi.y - lo.y);
+  const double area = 0.25 * Pi * (hi.x - lo.x) * (hi.y - lo.y);
   return area > 0.0 ? source.totalMass() / area : 1.0;
 }
 
@@ -232,11 +243,8 @@ bool coarseToFineHeights(const SourceMeasure& source, const std::vector<Vec2>& d
       continue;
     }
     const int a = face->vertex(0)->info(), b = face->vertex(1)->info(), c = face->vertex(2)->info();
-    const Vec2 ya = coarseDiracs[a], yb = coarseDiracs[b], yc = coarseDiracs[c];
-    const double area = cross(yb - ya, yc - ya);
-    const double la = cross(yb - y, yc - y) / area, lb = cross(yc - y, ya - y) / area;
-    const double lc = 1.0 - la - lb;
-    h[i] = la * model(a, y) + lb * model(b, y) + lc * model(c, y);
+    const auto l = barycentric(y, coarseDiracs[a], coarseDiracs[b], coarseDiracs[c]);
+    h[i] = l[0] * model(a, y) + l[1] * model(b, y) + l[2] * model(c, y);
   }
   for (int c = 0; c < coarseCount; ++c)
   {
@@ -267,9 +275,8 @@ int unhideDiracs(const SourceMeasure& source, const std::vector<Vec2>& diracs,
       }
       // The plane of the face's lifted points at y_i, from differences of heights.
       const Vec2 y = diracs[i], ya = diracs[f[0]], yb = diracs[f[1]], yc = diracs[f[2]];
-      const double area = cross(yb - ya, yc - ya);
-      const double lb = cross(yc - y, ya - y) / area, lc = cross(ya - y, yb - y) / area;
-      const Height plane = h[f[0]] + lb * (h[f[1]] - h[f[0]]) + lc * (h[f[2]] - h[f[0]]);
+      const auto l = barycentric(y, ya, yb, yc);
+      const Height plane = h[f[0]] + l[1] * (h[f[1]] - h[f[0]]) + l[2] * (h[f[2]] - h[f[0]]);
       // Lowered by depth below the plane, Dirac i owns the triangle
       // {x : <x - v, y_i - y_j> >= -depth, j = a, b, c} around the face's power vertex v,
       // of area depth^2 * unitArea: the depth that gives it about its mass.
@@ -392,7 +399,7 @@ int pullEmptyCellsIntoDisk(const std::vector<Vec2>& diracs, const std::vector<do
       // Lowered by depth below that value, Dirac i owns a small region there, of linear size
       // about depth / |y_i - y_owner|: a tenth of its mass, to leave its neighbours be.
       const double depth =
-        norm(diracs[i] - diracs[owner]) * std::sqrt(0.1 * nu[i] / 3.14159265358979323846);
+        norm(diracs[i] - diracs[owner]) * std::sqrt(0.1 * nu[i] / Pi);
       h[i] = best - static_cast<Height>(depth);
       ++changed;
     }
