@@ -14,11 +14,16 @@ namespace otparam
 
 // Below this many Diracs the coarse problem costs more than it saves.
 constexpr int MultiscaleMinimumDiracs = 20000;
+// Largest spread of the Diracs' spacing (90th / 10th percentile of Delaunay edge lengths) for
+// which the coarse-to-fine start is tried.
+constexpr double MaximumSpacingSpread = 8.0;
 
 // Heights for the Diracs y_i with masses nu (summing to the source's mass) from the solution of
-// a coarse problem: a quarter of the Diracs, each carrying the masses of the Diracs nearest to
-// it, solved by solveSemiDiscreteOT (itself coarse-to-fine while large enough). Returns false,
-// leaving h alone, when the coarse problem could not be solved.
+// a coarse problem: a quarter of the Diracs and their hull, each carrying the masses of the
+// Diracs nearest to it, solved by solveSemiDiscreteOT (itself coarse-to-fine while large
+// enough). The fine heights sample a smoothed dual potential of the coarse solution, a convex
+// function, so that no Dirac is hidden. Unit-disk source only. Returns false, leaving h alone,
+// when the Diracs' spacing varies too much or the coarse problem could not be solved.
 bool coarseToFineHeights(const SourceMeasure& source, const std::vector<Vec2>& diracs,
   const std::vector<double>& nu, std::vector<Height>& h);
 
