@@ -118,8 +118,13 @@ int main(int argc, char** argv)
       g_coarseToFine = false; // the start from the shrunk Voronoi diagram, for comparison
     else if (!std::strcmp(argv[a], "--contrast") && a + 1 < argc)
       contrast = std::atof(argv[++a]);
-    else
+    else if (argv[a][0] != '-' && std::atof(argv[a]) >= 1.0)
       sizes.push_back(static_cast<size_t>(std::atof(argv[a])));
+    else
+    {
+      std::fprintf(stderr, "usage: %s [--repeat R] [--contrast C] [--single-level] [N ...]\n", argv[0]);
+      return 2;
+    }
   }
   if (sizes.empty())
     sizes = { 1000, 10000, 100000 };
