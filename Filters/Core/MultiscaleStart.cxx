@@ -95,6 +95,27 @@ void circleCrossings(Vec2 a, Vec2 b, Visit&& visit)
   }
 }
 
+// The point of the unit circle in the direction of slope, when it lies in the convex polygon
+// (counter-clockwise): there <x, slope> is largest over the circle.
+bool circlePointInCell(const std::vector<Vec2>& polygon, Vec2 slope, Vec2& point)
+{
+  const double length = norm(slope);
+  const size_t m = polygon.size();
+  if (!(length > 0.0) || m < 3)
+  {
+    return false;
+  }
+  point = (1.0 / length) * slope;
+  for (size_t k = 0; k < m; ++k)
+  {
+    if (cross(polygon[(k + 1) % m] - polygon[k], point - polygon[k]) < 0.0)
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
 // The dual potential psi = phi^* of a semi-discrete transport plan from the uniform unit disk:
 // phi(x) = max_c <x, y_c> - h_c on the disk, so
 //   psi(y) = max over x in the disk of <x, y> - phi(x) = max over x in the disk of min_c
@@ -188,20 +209,10 @@ public:
       {
         largest = std::max(largest, dot(x, slope));
       }
-      const double length = norm(slope);
-      if (length > 0.0)
+      Vec2 onCircle;
+      if (circlePointInCell(arc.polygon, slope, onCircle))
       {
-        const Vec2 direction = (1.0 / length) * slope;
-        bool inside = true;
-        const size_t m = arc.polygon.size();
-        for (size_t k = 0; k < m && inside; ++k)
-        {
-          inside = cross(arc.polygon[(k + 1) % m] - arc.polygon[k], direction - arc.polygon[k]) >= 0.0;
-        }
-        if (inside)
-        {
-          largest = length;
-        }
+        largest = dot(onCircle, slope);
       }
       if (largest > -INFINITY)
       {
@@ -274,18 +285,6 @@ bool coarseToFineHeights(const SourceMeasure& source, const std::vector<Vec2>& d
   {
     return false;
   }
-  const std::vector<int> order = rowOrder(diracs);
-  std::vector<int> parent(n);
-  std::vector<double> coarseMass(coarseCount, 0.0);
-  Delaunay::Vertex_handle hint;
-  for (const int i : order)
-  {
-    const Delaunay::Point p(diracs[i].x, diracs[i].y);
-    hint = dt.nearest_vertex(p, hint == Delaunay::Vertex_handle() ? Delaunay::Face_handle() : hint->face());
-    parent[i] = hint->info();
-    coarseMass[parent[i]] += nu[i];
-  }
-
   std::vector<Vec2> coarseDiracs(coarseCount);
   for (int c = 0; c < coarseCount; ++c)
   {
@@ -308,9 +307,20 @@ bool coarseToFineHeights(const SourceMeasure& source, const std::vector<Vec2>& d
   // samples of the brain 11 and of the hand 1657 (stalled coarse-to-fine).
   std::sort(edgeLengths.begin(), edgeLengths.end());
   const double medianEdge = edgeLengths[edgeLengths.size() / 2];
-  if (!(edgeLengths[9 * edgeLengths.size() / 10] <= MaximumSpacingSpread * edgeLengths[edgeLengths.size() / 10]))
+  const double spread = edgeLengths[9 * edgeLengths.size() / 10] / edgeLengths[edgeLengths.size() / 10];
+  if (!(spread <= MaximumSpacingSpread))
   {
     return false;
+  }
+  const std::vector<int> order = rowOrder(diracs);
+  std::vector<double> coarseMass(coarseCount, 0.0);
+  Delaunay::Vertex_handle nearest;
+  for (const int i : order)
+  {
+    const Delaunay::Point p(diracs[i].x, diracs[i].y);
+    nearest = dt.nearest_vertex(
+      p, nearest == Delaunay::Vertex_handle() ? Delaunay::Face_handle() : nearest->face());
+    coarseMass[nearest->info()] += nu[i];
   }
   // The start needs the coarse cells' shape, not their last digits.
   OTOptions coarseOptions;
@@ -486,21 +496,19 @@ int pullEmptyCellsIntoDisk(const std::vector<Vec2>& diracs, const std::vector<do
           }
         };
         const size_t m = cell.vertices.size();
-        bool directionInside = norm(slope) > 0.0;
-        const Vec2 u = directionInside ? (1.0 / norm(slope)) * slope : Vec2{};
         for (size_t k = 0; k < m; ++k)
         {
-          const Vec2 a = cell.vertices[k], b = cell.vertices[(k + 1) % m];
+          const Vec2 a = cell.vertices[k];
           if (dot(a, a) <= 1.0)
           {
             consider(a);
           }
-          directionInside = directionInside && cross(b - a, u - a) >= 0.0;
-          circleCrossings(a, b, consider);
+          circleCrossings(a, cell.vertices[(k + 1) % m], consider);
         }
-        if (directionInside && m >= 3)
+        Vec2 onCircle;
+        if (circlePointInCell(cell.vertices, slope, onCircle))
         {
-          consider(u);
+          consider(onCircle);
         }
       }
       if (owner < 0)
