@@ -60,6 +60,7 @@ void PowerDiagram::build(
   {
     Triangles.clear();
     PowerVertices.clear();
+    PowerVertexCorrections.clear();
     RingFace.clear();
     Offsets.assign(n + 1, 0);
     Adjacency.clear();
@@ -69,6 +70,7 @@ void PowerDiagram::build(
 
   Triangles.clear();
   PowerVertices.clear();
+  PowerVertexCorrections.clear();
   RingFace.clear();
   Offsets.assign(n + 1, 0);
   Adjacency.clear();
@@ -80,7 +82,8 @@ void PowerDiagram::build(
     // a vertex and the overlaps and gaps (~1e-16 x edge length each) add up over 1e5 cells to
     // more than 1e-10 of a cell's mass.
     Triangles.reserve(rt.number_of_faces());
-    PowerVertices.reserve(rt.number_of_faces());
+    PowerVertices.resize(rt.number_of_faces());
+    PowerVertexCorrections.resize(rt.number_of_faces());
     for (auto f = rt.all_faces_begin(); f != rt.all_faces_end(); ++f)
     {
       if (rt.is_infinite(f))
@@ -89,9 +92,10 @@ void PowerDiagram::build(
         continue;
       }
       const int a = f->vertex(0)->info(), b = f->vertex(1)->info(), c = f->vertex(2)->info();
-      f->info() = static_cast<int>(Triangles.size());
+      const int face = static_cast<int>(Triangles.size());
+      f->info() = face;
       Triangles.push_back({ a, b, c });
-      PowerVertices.push_back(powerVertex(a, b, c));
+      powerVertex(a, b, c, PowerVertices[face], PowerVertexCorrections[face]);
     }
     // Faces around each vertex, counter-clockwise, and the neighbour across the edge that
     // follows each face (-1: the edge to the infinite vertex).
@@ -155,7 +159,7 @@ void PowerDiagram::build(
   }
 }
 
-Vec2 PowerDiagram::powerVertex(int a, int b, int c) const
+void PowerDiagram::powerVertex(int a, int b, int c, Vec2& rounded, Vec2& correction) const
 {
   // <x, y_a - y_b> = h_a - h_b and <x, y_a - y_c> = h_a - h_c, with x = y_a + z, in long
   // double: the right-hand sides are differences of nearly equal heights.
@@ -168,13 +172,16 @@ Vec2 PowerDiagram::powerVertex(int a, int b, int c) const
   const LD det = ux * vy - uy * vx;
   const LD zx = (r1 * vy - r2 * uy) / det;
   const LD zy = (ux * r2 - vx * r1) / det;
-  return { static_cast<double>(ax + zx), static_cast<double>(ay + zy) };
+  const LD x = ax + zx, y = ay + zy;
+  rounded = { static_cast<double>(x), static_cast<double>(y) };
+  correction = { static_cast<double>(x - rounded.x), static_cast<double>(y - rounded.y) };
 }
 
 void PowerDiagram::cell(int i, Vec2 lo, Vec2 hi, PowerCell& out) const
 {
   out.vertices.clear();
   out.neighbor.clear();
+  out.correction.clear();
   if (Hidden[i])
   {
     return;
@@ -299,6 +306,7 @@ void PowerDiagram::ringCell(int i, Vec2 lo, Vec2 hi, PowerCell& out) const
     if (!skipped((start + s) % m))
     {
       out.vertices.push_back(PowerVertices[RingFace[k]]);
+      out.correction.push_back(PowerVertexCorrections[RingFace[k]]);
       out.neighbor.push_back(Adjacency[k]);
     }
   }
@@ -340,6 +348,7 @@ void PowerDiagram::ringCell(int i, Vec2 lo, Vec2 hi, PowerCell& out) const
   }
   out.vertices.push_back(first - farIn * inDir);
   out.neighbor.push_back(inNeighbor);
+  out.correction.resize(out.vertices.size()); // the far points are exact as they are
 }
 
 } // namespace otparam

@@ -46,11 +46,13 @@ public:
   const std::vector<Triangle>& triangles() const { return Triangles; }
 
 private:
-  Vec2 powerVertex(int a, int b, int c) const;
+  // The power vertex rounded to double, and what the rounding left out.
+  void powerVertex(int a, int b, int c, Vec2& rounded, Vec2& correction) const;
   void ringCell(int i, Vec2 lo, Vec2 hi, PowerCell& out) const;
 
   int Dimension = 0;
   std::vector<Vec2> PowerVertices; // one per finite face (weighted circumcentre)
+  std::vector<Vec2> PowerVertexCorrections;
   std::vector<int> RingFace;       // faces around each Dirac, CCW (-1: infinite), rows as Adjacency
   std::vector<Vec2> Sites;
   std::vector<Height> Heights;

@@ -17,43 +17,70 @@ constexpr double Pi = 3.14159265358979323846;
 // ---------------------------------------------------------------------------------------------
 // Unit disk, density 1.
 
+// A point in long double: cell vertices with their corrections, and the points where cell edges
+// cross the circle.
+struct PreciseVec2
+{
+  long double x = 0.0L, y = 0.0L;
+  Vec2 rounded() const { return { static_cast<double>(x), static_cast<double>(y) }; }
+};
+
 struct ChordPiece
 {
-  Vec2 a, b;       // the part of a cell edge inside the disk
+  PreciseVec2 a, b; // the part of a cell edge inside the disk
   int neighbor;
   bool enters;     // a is on the circle (the boundary comes in from an arc)
   bool exits;      // b is on the circle
 };
 
-// Part of segment p->q inside the unit disk, as parameters [t0, t1] within [0, 1].
-bool segmentInsideUnitDisk(Vec2 p, Vec2 q, double& t0, double& t1)
+// Part of segment p->q inside the unit disk: the points where it enters (pIn) and leaves (qIn),
+// each p or q itself when that end lies inside. Each crossing is measured from the nearer end:
+// cell edges reach power vertices ~100 away (nearly flat faces by the hull), and a crossing
+// found as p + t (q - p) from such an end carries its rounding (~1e-14 along the circle) into the
+// mass of the thin cell beside it.
+bool segmentInsideUnitDisk(
+  PreciseVec2 p, PreciseVec2 q, PreciseVec2& pIn, PreciseVec2& qIn, bool& pOut, bool& qOut)
 {
-  const Vec2 d = q - p;
-  const double a = dot(d, d);
-  if (a == 0.0)
+  using LD = long double;
+  const LD dx = q.x - p.x, dy = q.y - p.y;
+  const LD a = dx * dx + dy * dy;
+  if (a == 0.0L)
   {
     return false;
   }
   // |p + t d|^2 = 1  <=>  a t^2 + 2 b t + c = 0
-  const double b = dot(p, d);
-  const double c = dot(p, p) - 1.0;
-  const double disc = b * b - a * c;
-  if (disc <= 0.0)
+  const LD b = p.x * dx + p.y * dy;
+  const LD c = p.x * p.x + p.y * p.y - 1.0L;
+  const LD disc = b * b - a * c;
+  if (disc <= 0.0L)
   {
     return false;
   }
-  const double s = std::sqrt(disc);
+  const LD root = std::sqrt(disc);
   // Numerically stable roots.
-  const double qq = -(b + std::copysign(s, b));
-  double r0 = qq / a;
-  double r1 = (qq != 0.0) ? c / qq : -r0;
+  const LD qq = -(b + std::copysign(root, b));
+  LD r0 = qq / a;
+  LD r1 = (qq != 0.0L) ? c / qq : -r0;
   if (r0 > r1)
   {
     std::swap(r0, r1);
   }
-  t0 = std::max(r0, 0.0);
-  t1 = std::min(r1, 1.0);
-  return t0 < t1;
+  if (!(std::max(r0, 0.0L) < std::min(r1, 1.0L)))
+  {
+    return false;
+  }
+  auto crossing = [&](LD t) {
+    // 1 - t is exact for t in [1/2, 1].
+    const LD x = t <= 0.5L ? p.x + t * dx : q.x - (1.0L - t) * dx;
+    const LD y = t <= 0.5L ? p.y + t * dy : q.y - (1.0L - t) * dy;
+    const LD r = std::sqrt(x * x + y * y);
+    return PreciseVec2{ x / r, y / r };
+  };
+  pOut = r0 > 0.0L;
+  qOut = r1 < 1.0L;
+  pIn = pOut ? crossing(r0) : p;
+  qIn = qOut ? crossing(r1) : q;
+  return true;
 }
 
 // theta - sin(theta), accurate for small angles (circular segments of tiny cells).
@@ -65,12 +92,6 @@ double thetaMinusSin(double theta)
     return theta * t2 / 6.0 * (1.0 - t2 / 20.0 * (1.0 - t2 / 42.0));
   }
   return theta - std::sin(theta);
-}
-
-Vec2 onCircle(Vec2 p)
-{
-  const double r = norm(p);
-  return { p.x / r, p.y / r };
 }
 
 bool insideConvex(const PowerCell& cell, Vec2 p)
@@ -145,7 +166,7 @@ public:
     {
       if (p.neighbor >= 0)
       {
-        out.edgeMass.emplace_back(p.neighbor, norm(p.b - p.a));
+        out.edgeMass.emplace_back(p.neighbor, norm(p.b.rounded() - p.a.rounded()));
       }
     }
     // Polygon part, in coordinates local to its first point and in long double: the cells
@@ -153,10 +174,10 @@ public:
     // largest cell (the gauge) collects the rounding of all the others; in double that is
     // ~1e-10 of a cell at 1e5 cells.
     using LD = long double;
-    const Vec2 o = pieces.front().a;
+    const PreciseVec2 o = pieces.front().a;
     LD area2 = 0.0L, mx6 = 0.0L, my6 = 0.0L;
-    auto addTriangleEdge = [&](Vec2 p, Vec2 q) {
-      const LD px = LD(p.x) - o.x, py = LD(p.y) - o.y, qx = LD(q.x) - o.x, qy = LD(q.y) - o.y;
+    auto addTriangleEdge = [&](PreciseVec2 p, PreciseVec2 q) {
+      const LD px = p.x - o.x, py = p.y - o.y, qx = q.x - o.x, qy = q.y - o.y;
       const LD c = px * qy - py * qx;
       area2 += c;
       mx6 += c * (px + qx);
@@ -182,13 +203,13 @@ public:
       {
         continue;
       }
-      const double theta = arcAngle(p.b, next.a, cell);
+      const double theta = arcAngle(p.b.rounded(), next.a.rounded(), cell);
       if (theta <= 0.0)
       {
         continue;
       }
       const double segArea = 0.5 * thetaMinusSin(theta);
-      const double mid = std::atan2(p.b.y, p.b.x) + 0.5 * theta;
+      const double mid = std::atan2(static_cast<double>(p.b.y), static_cast<double>(p.b.x)) + 0.5 * theta;
       const double s = std::sin(0.5 * theta);
       const double segMoment = (2.0 / 3.0) * s * s * s;
       area += segArea;
@@ -216,11 +237,12 @@ public:
     {
       const ChordPiece& p = pieces[k];
       const ChordPiece& next = pieces[(k + 1) % m];
-      boundary.push_back(p.a);
-      boundary.push_back(p.b);
+      boundary.push_back(p.a.rounded());
+      boundary.push_back(p.b.rounded());
       if (p.exits && next.enters)
       {
-        appendArc(boundary, p.b, arcAngle(p.b, next.a, cell), maxArcAngle, true);
+        appendArc(boundary, p.b.rounded(), arcAngle(p.b.rounded(), next.a.rounded(), cell),
+          maxArcAngle, true);
       }
     }
     // Drop consecutive duplicates (a piece ends where the next starts).
@@ -254,26 +276,37 @@ private:
     }
   }
 
+  static PreciseVec2 precise(const PowerCell& cell, size_t k)
+  {
+    PreciseVec2 v{ cell.vertices[k].x, cell.vertices[k].y };
+    if (k < cell.correction.size())
+    {
+      v.x += cell.correction[k].x;
+      v.y += cell.correction[k].y;
+    }
+    return v;
+  }
+
   static void chordPieces(const PowerCell& cell, std::vector<ChordPiece>& pieces)
   {
     const size_t n = cell.vertices.size();
     for (size_t k = 0; k < n; ++k)
     {
+      const size_t k1 = (k + 1) % n;
       const Vec2 p = cell.vertices[k];
-      const Vec2 q = cell.vertices[(k + 1) % n];
+      const Vec2 q = cell.vertices[k1];
       // The two cells sharing an edge walk it in opposite directions; intersect it with the
       // circle in one canonical direction so that both get bitwise the same points (the cells
       // then tile the disk exactly).
       const bool forward = p.x < q.x || (p.x == q.x && p.y < q.y);
-      const Vec2 a = forward ? p : q, b = forward ? q : p;
-      double t0, t1;
-      if (!segmentInsideUnitDisk(a, b, t0, t1))
+      const PreciseVec2 pp = precise(cell, k), pq = precise(cell, k1);
+      const PreciseVec2 a = forward ? pp : pq, b = forward ? pq : pp;
+      PreciseVec2 ca, cb;
+      bool aOut, bOut;
+      if (!segmentInsideUnitDisk(a, b, ca, cb, aOut, bOut))
       {
         continue;
       }
-      const bool aOut = t0 > 0.0, bOut = t1 < 1.0;
-      const Vec2 ca = aOut ? onCircle(a + t0 * (b - a)) : a;
-      const Vec2 cb = bOut ? onCircle(a + t1 * (b - a)) : b;
       ChordPiece piece;
       piece.neighbor = cell.neighbor[k];
       piece.enters = forward ? aOut : bOut;
