@@ -532,7 +532,7 @@ int unhideDiracs(const SourceMeasure& source, const std::vector<Vec2>& diracs,
       // it, 30 rounds did not end the cascade at 1e5 Diracs of contrast 1e4).
       const double depth = unitArea > 0.0 ? std::sqrt(0.25 * nu[i] / (density * unitArea)) : 0.0;
       // Never less than a safe margin above the rounding of the heights.
-      const double margin = 1e-12 * (1.0 + std::abs(static_cast<double>(plane)));
+      const double margin = 1e-12 * (1.0 + std::abs(static_cast<double>(plane.value())));
       h[i] = plane - std::max(depth, margin);
     }
     diagram.build(diracs, h);
@@ -584,7 +584,7 @@ int pullEmptyCellsIntoDisk(const std::vector<Vec2>& diracs, const std::vector<do
         diagram.cell(j, lo, hi, cell);
         const Vec2 slope = diracs[i] - diracs[j];
         auto consider = [&](Vec2 x) {
-          const Height value = static_cast<Height>(dot(x, slope)) + before[j];
+          const Height value = before[j] + dot(x, slope);
           if (value > best)
           {
             best = value;
@@ -615,7 +615,7 @@ int pullEmptyCellsIntoDisk(const std::vector<Vec2>& diracs, const std::vector<do
       // about depth / |y_i - y_owner|: a tenth of its mass, to leave its neighbours be.
       const double depth =
         norm(diracs[i] - diracs[owner]) * std::sqrt(0.1 * nu[i] / Pi);
-      h[i] = best - static_cast<Height>(depth);
+      h[i] = best - depth;
       ++changed;
     }
   }

@@ -36,7 +36,7 @@ void PowerDiagram::build(
   for (int i = 0; i < n; ++i)
   {
     const Vec2 y = diracs[i];
-    input.emplace_back(WeightedPoint(BarePoint(y.x, y.y), static_cast<double>(dot(y, y) - 2.0L * heights[i])), i);
+    input.emplace_back(WeightedPoint(BarePoint(y.x, y.y), static_cast<double>(dot(y, y) - 2.0L * heights[i].value())), i);
   }
   Regular rt;
   rt.insert(input.begin(), input.end()); // spatially sorted insertion

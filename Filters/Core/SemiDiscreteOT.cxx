@@ -171,8 +171,8 @@ bool certainlyHidesADirac(
       // Height of i above the plane, from differences (neighbours' heights are close).
       const long double above =
         -(la * (trial[a] - trial[i]) + lb * (trial[b] - trial[i]) + lc * (trial[c] - trial[i]));
-      const long double scale = std::abs(trial[a]) + std::abs(trial[b]) + std::abs(trial[c]) +
-        std::abs(trial[i]) + 1.0L;
+      const long double scale = std::abs(trial[a].value()) + std::abs(trial[b].value()) +
+        std::abs(trial[c].value()) + std::abs(trial[i].value()) + 1.0L;
       if (above > 1e-9L * scale)
       {
         ++found;
@@ -567,7 +567,7 @@ bool startHeights(const SourceMeasure& source, const std::vector<Vec2>& diracs,
   for (size_t i = 0; i < n; ++i)
   {
     const Vec2 z = center + s * (diracs[i] - center);
-    h[i] = static_cast<Height>(dot(z, z)) / (2.0L * s);
+    h[i] = static_cast<long double>(dot(z, z)) / (2.0L * s);
   }
   evaluate(source, diracs, h, diagram, ev, result);
   return false;
@@ -653,9 +653,9 @@ void dampedNewton(const SourceMeasure& source, const std::vector<Vec2>& diracs,
     // trial costs a whole evaluation, and high-contrast problems need damped steps for many
     // iterations in a row.
     // Near the tolerance after full steps, Newton is in its quadratic regime: a step it must damp
-    // below 1/4 there is the rounding floor of the cell masses, and further halvings only cost
-    // evaluations (1e6 Diracs of contrast 1e4 stall at 1.9e-10 after 8 iterations; every trial
-    // from 1 down to 2e-12 left the error at 1.9e-10 .. 3.3e-10, 3.5 s each).
+    // below 1/4 there meets the rounding floor of the cell masses, and further halvings only cost
+    // evaluations (with long double heights, 1e6 Diracs of contrast 1e4 stalled at 1.9e-10;
+    // every trial from 1 down to 2e-12 left the error at 1.9e-10 .. 3.3e-10, 3.5 s each).
     const bool nearTolerance = lastStep == 1.0 && result.relativeError <= 1e3 * tolerance;
     const double smallestStep = nearTolerance ? 0.25 : 0.0;
     double lambda = 1.0;
@@ -759,9 +759,8 @@ OTResult solveSemiDiscreteOT(const SourceMeasure& source, const std::vector<Vec2
     // The coarse-to-fine start only saves time: when Newton stalls from it far from the
     // solution, the solve starts over from the single-level start (seen with 2e4 adaptive
     // samples of a hand, whose spacing varies by 1e3, before such Diracs were kept single-level:
-    // every damping of the first step was rejected). A stall near the solution is the limit of
-    // double precision (1e6 Diracs of contrast 1e4: 1.9e-10), which a restart would only reach
-    // again, much later.
+    // every damping of the first step was rejected). A stall near the solution is the rounding
+    // limit of the cell masses, which a restart would only reach again, much later.
     if (multiscale && !result.converged && !result.aborted &&
       result.iterations < options.maxIterations && result.relativeError > StalledStartError)
     {
@@ -780,7 +779,11 @@ OTResult solveSemiDiscreteOT(const SourceMeasure& source, const std::vector<Vec2
     }
   }
 
-  result.heights.assign(h.begin(), h.end());
+  result.heights.resize(n);
+  for (int i = 0; i < n; ++i)
+  {
+    result.heights[i] = static_cast<double>(h[i].value());
+  }
   result.cellMass = ev.cellMass;
   result.centroids.resize(n);
   for (int i = 0; i < n; ++i)
