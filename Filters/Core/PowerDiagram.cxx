@@ -81,54 +81,66 @@ void PowerDiagram::build(
     // cells tile the domain exactly: with per-cell clipping, every cell rounds its own copy of
     // a vertex and the overlaps and gaps (~1e-16 x edge length each) add up over 1e5 cells to
     // more than 1e-10 of a cell's mass.
-    Triangles.reserve(rt.number_of_faces());
-    PowerVertices.resize(rt.number_of_faces());
-    PowerVertexCorrections.resize(rt.number_of_faces());
-    for (auto f = rt.all_faces_begin(); f != rt.all_faces_end(); ++f)
+    // Faces are numbered serially; their power vertices and the rings around the Diracs are
+    // then filled in parallel (1e6 Diracs: 1.1 s serially and by Dirac id, after an insertion
+    // of 1.35 s; now 0.45 s).
+    const int faceCount = static_cast<int>(rt.number_of_faces());
+    Triangles.resize(faceCount);
+    int face = 0;
+    for (auto f = rt.finite_faces_begin(); f != rt.finite_faces_end(); ++f)
     {
-      if (rt.is_infinite(f))
-      {
-        f->info() = -1;
-        continue;
-      }
-      const int a = f->vertex(0)->info(), b = f->vertex(1)->info(), c = f->vertex(2)->info();
-      const int face = static_cast<int>(Triangles.size());
       f->info() = face;
-      Triangles.push_back({ a, b, c });
-      powerVertex(a, b, c, PowerVertices[face], PowerVertexCorrections[face]);
+      Triangles[face++] = { f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info() };
     }
-    // Faces around each vertex, counter-clockwise, and the neighbour across the edge that
-    // follows each face (-1: the edge to the infinite vertex).
-    std::vector<int> ringStart(n, -1), ringSize(n, 0);
+    auto infinite = rt.incident_faces(rt.infinite_vertex()), infiniteEnd = infinite;
+    do
+    {
+      infinite->info() = -1;
+    } while (++infinite != infiniteEnd);
+    PowerVertices.resize(faceCount);
+    PowerVertexCorrections.resize(faceCount);
+#pragma omp parallel for schedule(static)
+    for (int f = 0; f < faceCount; ++f)
+    {
+      const Triangle& t = Triangles[f];
+      powerVertex(t[0], t[1], t[2], PowerVertices[f], PowerVertexCorrections[f]);
+    }
+    // Faces around each Dirac, counter-clockwise, and the neighbour across the edge that
+    // follows each face (-1: the edge to the infinite vertex), in rows by Dirac id; visited in
+    // the triangulation's own (spatially sorted) order, which keeps the circulators' memory
+    // accesses local.
+    std::vector<Regular::Vertex_handle> vertices;
+    vertices.reserve(rt.number_of_vertices());
     for (auto v = rt.finite_vertices_begin(); v != rt.finite_vertices_end(); ++v)
     {
-      const int i = v->info();
-      ringStart[i] = static_cast<int>(RingFace.size());
+      vertices.push_back(v);
+    }
+    const int vertexCount = static_cast<int>(vertices.size());
+#pragma omp parallel for schedule(static)
+    for (int k = 0; k < vertexCount; ++k)
+    {
+      Offsets[vertices[k]->info() + 1] = static_cast<int>(rt.degree(vertices[k]));
+    }
+    for (int i = 0; i < n; ++i)
+    {
+      Offsets[i + 1] += Offsets[i];
+    }
+    RingFace.resize(Offsets[n]);
+    Adjacency.resize(Offsets[n]);
+#pragma omp parallel for schedule(static)
+    for (int k = 0; k < vertexCount; ++k)
+    {
+      const auto v = vertices[k];
+      int slot = Offsets[v->info()];
       auto fc = rt.incident_faces(v), done = fc;
       do
       {
-        const int k = fc->index(v);
-        const auto next = fc->vertex(Regular::cw(k));
-        RingFace.push_back(fc->info());
-        Adjacency.push_back(rt.is_infinite(next) ? -1 : next->info());
+        const auto next = fc->vertex(Regular::cw(fc->index(v)));
+        RingFace[slot] = fc->info();
+        Adjacency[slot] = rt.is_infinite(next) ? -1 : next->info();
+        ++slot;
       } while (++fc != done);
-      ringSize[i] = static_cast<int>(RingFace.size()) - ringStart[i];
     }
-    // Reorder the rings by Dirac id into compressed rows.
-    std::vector<int> faces, neighbors;
-    faces.reserve(RingFace.size());
-    neighbors.reserve(RingFace.size());
-    for (int i = 0; i < n; ++i)
-    {
-      for (int k = 0; k < ringSize[i]; ++k)
-      {
-        faces.push_back(RingFace[ringStart[i] + k]);
-        neighbors.push_back(Adjacency[ringStart[i] + k]);
-      }
-      Offsets[i + 1] = Offsets[i] + ringSize[i];
-    }
-    RingFace.swap(faces);
-    Adjacency.swap(neighbors);
     return;
   }
 

@@ -4,6 +4,11 @@
 #include "PowerDiagram.h"
 #include "SparseCholesky.h"
 
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Spatial_sort_traits_adapter_2.h>
+#include <CGAL/Hilbert_sort_2.h>
+#include <CGAL/property_map.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -710,16 +715,13 @@ void dampedNewton(const SourceMeasure& source, const std::vector<Vec2>& diracs,
 
 } // namespace
 
-OTResult solveSemiDiscreteOT(const SourceMeasure& source, const std::vector<Vec2>& diracs,
+namespace
+{
+// solveSemiDiscreteOT for valid Diracs.
+OTResult solveValid(const SourceMeasure& source, const std::vector<Vec2>& diracs,
   const std::vector<double>& masses, const OTOptions& options)
 {
   OTResult result;
-  const std::string invalid = validateDiracs(diracs, masses);
-  if (!invalid.empty())
-  {
-    result.message = invalid;
-    return result;
-  }
   const int n = static_cast<int>(diracs.size());
   // Compensated, in long double: the largest cell (the gauge) absorbs sum(mass) - total, and a
   // plain sum of 1e5 masses is off by ~1e-14 relative, ~1e-10 of one cell's mass.
@@ -791,6 +793,62 @@ OTResult solveSemiDiscreteOT(const SourceMeasure& source, const std::vector<Vec2
     const double w = ev.cellMass[i];
     result.centroids[i] = w > 0.0 ? (1.0 / w) * ev.moment[i] : diracs[i];
   }
+  return result;
+}
+
+} // namespace
+
+OTResult solveSemiDiscreteOT(const SourceMeasure& source, const std::vector<Vec2>& diracs,
+  const std::vector<double>& masses, const OTOptions& options)
+{
+  const std::string invalid = validateDiracs(diracs, masses);
+  if (!invalid.empty())
+  {
+    OTResult result;
+    result.message = invalid;
+    return result;
+  }
+  // The solve numbers the Diracs along a Hilbert curve, so that every loop over them (the power
+  // diagram's rings and vertices, the integration, the Hessian's rows) walks memory in spatial
+  // order; in the caller's order (random, for sampled points) those walks miss the cache.
+  // Measured, 1e6 random Diracs of contrast 1e4: one evaluation 2.8 -> 2.0 s, the solve
+  // 116 -> 82 s.
+  const int n = static_cast<int>(diracs.size());
+  using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+  std::vector<K::Point_2> points;
+  points.reserve(n);
+  for (const Vec2& y : diracs)
+  {
+    points.emplace_back(y.x, y.y);
+  }
+  std::vector<int> order(n);
+  std::iota(order.begin(), order.end(), 0);
+  using Traits =
+    CGAL::Spatial_sort_traits_adapter_2<K, CGAL::Pointer_property_map<K::Point_2>::type>;
+  CGAL::Hilbert_sort_2<Traits, CGAL::Hilbert_sort_median_policy>(
+    Traits(CGAL::make_property_map(points)))(order.begin(), order.end());
+  std::vector<Vec2> sortedDiracs(n);
+  std::vector<double> sortedMasses(n);
+  for (int k = 0; k < n; ++k)
+  {
+    sortedDiracs[k] = diracs[order[k]];
+    sortedMasses[k] = masses[order[k]];
+  }
+  OTResult sorted = solveValid(source, sortedDiracs, sortedMasses, options);
+  OTResult result = sorted;
+  auto unsort = [&](const auto& from, auto& to) {
+    if (static_cast<int>(from.size()) == n)
+    {
+      for (int k = 0; k < n; ++k)
+      {
+        to[order[k]] = from[k];
+      }
+    }
+  };
+  unsort(sorted.mass, result.mass);
+  unsort(sorted.heights, result.heights);
+  unsort(sorted.cellMass, result.cellMass);
+  unsort(sorted.centroids, result.centroids);
   return result;
 }
 
