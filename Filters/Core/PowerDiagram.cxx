@@ -25,21 +25,116 @@ using WeightedPoint = Regular::Weighted_point;
 using BarePoint = Regular::Bare_point;
 } // namespace
 
+// The regular triangulation kept between builds, for reweight().
+struct PowerDiagram::Triangulation
+{
+  Regular rt;
+};
+
+PowerDiagram::PowerDiagram() = default;
+PowerDiagram::~PowerDiagram() = default;
+PowerDiagram::PowerDiagram(PowerDiagram&&) noexcept = default;
+PowerDiagram& PowerDiagram::operator=(PowerDiagram&&) noexcept = default;
+
+namespace
+{
+double weight(Vec2 y, const Height& h)
+{
+  return static_cast<double>(dot(y, y) - 2.0L * h.value());
+}
+
+// Turns the regular triangulation of the same points under other weights into theirs by
+// Lawson flips: every edge whose opposite vertex conflicts with the power circle of its face is
+// flipped, and the edges around it are checked again. A triangulation of all the points that is
+// locally regular everywhere is the regular triangulation (Edelsbrunner & Shah), so when the
+// flips end the result is exact. Flips cannot hide a vertex: a non-regular edge whose
+// quadrilateral is not convex returns false (the caller then inserts from scratch), as does a
+// triangulation that already has hidden vertices. CGAL offers no update of weights; a Newton
+// step moves few edges, so this costs a fraction of a new insertion.
+bool reweightByFlips(
+  Regular& rt, const std::vector<Vec2>& diracs, const std::vector<Height>& heights)
+{
+  if (rt.dimension() != 2 || rt.number_of_hidden_vertices() != 0 ||
+    rt.number_of_vertices() != diracs.size())
+  {
+    return false;
+  }
+  for (auto v = rt.finite_vertices_begin(); v != rt.finite_vertices_end(); ++v)
+  {
+    const int i = v->info();
+    v->set_point(WeightedPoint(v->point().point(), weight(diracs[i], heights[i])));
+  }
+  std::vector<Regular::Edge> stack(rt.finite_edges_begin(), rt.finite_edges_end());
+  const auto orientation = rt.geom_traits().orientation_2_object();
+  // Lawson's flips end after finitely many steps; the budget only guards against a bug.
+  size_t budget = 20 * stack.size() + 1000;
+  while (!stack.empty())
+  {
+    if (budget-- == 0)
+    {
+      return false;
+    }
+    const auto [f, i] = stack.back();
+    stack.pop_back();
+    const Regular::Face_handle g = f->neighbor(i);
+    if (rt.is_infinite(f) || rt.is_infinite(g))
+    {
+      continue; // the hull does not change: the points are the same
+    }
+    const int j = rt.mirror_index(f, i);
+    if (rt.power_test(f, g->vertex(j)->point()) != CGAL::ON_POSITIVE_SIDE)
+    {
+      continue;
+    }
+    const BarePoint& p = f->vertex(i)->point().point();
+    const BarePoint& q = f->vertex(Regular::ccw(i))->point().point();
+    const BarePoint& r = f->vertex(Regular::cw(i))->point().point();
+    const BarePoint& t = g->vertex(j)->point().point();
+    if (orientation(p, q, t) != CGAL::LEFT_TURN || orientation(p, t, r) != CGAL::LEFT_TURN)
+    {
+      return false;
+    }
+    rt.tds().flip(f, i);
+    for (int k = 0; k < 3; ++k)
+    {
+      stack.emplace_back(f, k);
+      stack.emplace_back(g, k);
+    }
+  }
+  return true;
+}
+} // namespace
+
 void PowerDiagram::build(
   const std::vector<Vec2>& diracs, const std::vector<Height>& heights, bool onlyWhenNoneHidden)
 {
   const int n = static_cast<int>(diracs.size());
+  const bool sameDiracs = Kept && Sites.size() == diracs.size() &&
+    std::equal(Sites.begin(), Sites.end(), diracs.begin(),
+      [](Vec2 a, Vec2 b) { return a.x == b.x && a.y == b.y; });
   Sites = diracs;
   Heights = heights;
-  std::vector<std::pair<WeightedPoint, int>> input;
-  input.reserve(n);
-  for (int i = 0; i < n; ++i)
+  std::unique_ptr<Triangulation> fresh;
+  if (!sameDiracs || !reweightByFlips(Kept->rt, diracs, heights))
   {
-    const Vec2 y = diracs[i];
-    input.emplace_back(WeightedPoint(BarePoint(y.x, y.y), static_cast<double>(dot(y, y) - 2.0L * heights[i].value())), i);
+    std::vector<std::pair<WeightedPoint, int>> input;
+    input.reserve(n);
+    for (int i = 0; i < n; ++i)
+    {
+      input.emplace_back(
+        WeightedPoint(BarePoint(diracs[i].x, diracs[i].y), weight(diracs[i], heights[i])), i);
+    }
+    fresh = std::make_unique<Triangulation>();
+    fresh->rt.insert(input.begin(), input.end()); // spatially sorted insertion
+    // A triangulation with hidden Diracs cannot be flipped into the next one; the last one,
+    // where the flips stopped, still can (a Newton trial that hides Diracs is followed by a
+    // shorter one from the same heights).
+    if (!sameDiracs || fresh->rt.number_of_hidden_vertices() == 0)
+    {
+      Kept = std::move(fresh);
+    }
   }
-  Regular rt;
-  rt.insert(input.begin(), input.end()); // spatially sorted insertion
+  Regular& rt = fresh ? fresh->rt : Kept->rt;
 
   Hidden.assign(n, 1);
   for (auto v = rt.finite_vertices_begin(); v != rt.finite_vertices_end(); ++v)

@@ -6,6 +6,7 @@
 #include "OTGeometry.h"
 #include "SourceMeasure.h"
 
+#include <memory>
 #include <vector>
 
 namespace otparam
@@ -58,6 +59,11 @@ private:
 class PowerDiagram
 {
 public:
+  PowerDiagram();
+  ~PowerDiagram();
+  PowerDiagram(PowerDiagram&&) noexcept;
+  PowerDiagram& operator=(PowerDiagram&&) noexcept;
+
   // Cells W_i = {x : <x, y_i> - h_i >= <x, y_j> - h_j for all j}: the power diagram of y_i with
   // weights |y_i|^2 - 2 h_i.
   // With onlyWhenNoneHidden, a diagram with a hidden Dirac stops after counting them (only
@@ -89,6 +95,10 @@ private:
   void powerVertex(int a, int b, int c, Vec2& rounded, Vec2& correction) const;
   void ringCell(int i, Vec2 lo, Vec2 hi, PowerCell& out) const;
 
+  // The last regular triangulation: a build for the same Diracs under new heights flips it
+  // (a Newton step changes few edges) instead of inserting every Dirac again.
+  struct Triangulation;
+  std::unique_ptr<Triangulation> Kept;
   int Dimension = 0;
   std::vector<Vec2> PowerVertices; // one per finite face (weighted circumcentre)
   std::vector<Vec2> PowerVertexCorrections;

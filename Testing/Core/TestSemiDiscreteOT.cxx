@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <numeric>
@@ -215,6 +216,53 @@ TEST(PowerDiagram, HeightsKeepStepsBelowTheLongDoubleSpacing)
   EXPECT_EQ(walked - h, 1000.0L * step - 0.5L);
   EXPECT_TRUE(moved < h);
   EXPECT_TRUE(h > moved);
+}
+
+TEST(PowerDiagram, RebuildUnderNewHeightsMatchesAFreshOne)
+{
+  // The second build of a diagram flips its kept triangulation; it must equal a diagram built
+  // from scratch, for steps that change many edges and for steps that hide Diracs.
+  const auto y = randomInDisk(3000, 4);
+  std::mt19937 rng(5);
+  std::vector<Height> h(y.size());
+  for (size_t i = 0; i < y.size(); ++i)
+    h[i] = 0.5L * dot(y[i], y[i]);
+  PowerDiagram kept;
+  kept.build(y, h);
+  auto sortedTriangles = [](const PowerDiagram& d) {
+    std::vector<std::array<int, 3>> t;
+    for (Triangle f : d.triangles())
+    {
+      std::array<int, 3> a{ f[0], f[1], f[2] };
+      std::rotate(a.begin(), std::min_element(a.begin(), a.end()), a.end());
+      t.push_back(a);
+    }
+    std::sort(t.begin(), t.end());
+    return t;
+  };
+  // A quadratic term of alternating sign changes most edges from one build to the next; noise of
+  // 1e-4 and up hides Diracs (spacing ~0.03).
+  double shear = 0.3;
+  for (const double amplitude : { 1e-6, 1e-3, 0.0, 1e-5, 1e-4, 1e-6, 0.0 })
+  {
+    std::uniform_real_distribution<double> noise(-amplitude, amplitude);
+    shear = -shear;
+    for (size_t i = 0; i < y.size(); ++i)
+      h[i] = 0.5L * dot(y[i], y[i]) + noise(rng) + shear * y[i].x * y[i].y;
+    kept.build(y, h);
+    PowerDiagram fresh;
+    fresh.build(y, h);
+    ASSERT_EQ(kept.hiddenCount(), fresh.hiddenCount()) << amplitude;
+    for (int i = 0; i < fresh.size(); ++i)
+    {
+      ASSERT_EQ(kept.hidden(i), fresh.hidden(i));
+      ASSERT_TRUE(std::equal(kept.neighborsBegin(i), kept.neighborsEnd(i), fresh.neighborsBegin(i),
+        fresh.neighborsEnd(i)) || std::is_permutation(kept.neighborsBegin(i), kept.neighborsEnd(i),
+        fresh.neighborsBegin(i), fresh.neighborsEnd(i)));
+    }
+    EXPECT_EQ(sortedTriangles(kept), sortedTriangles(fresh)) << amplitude;
+    std::printf("height noise %.0e: %d hidden\n", amplitude, fresh.hiddenCount());
+  }
 }
 
 TEST(SemiDiscreteOT, HighContrastNeedsFewNewtonIterations)
