@@ -307,11 +307,22 @@ private:
     Eigen::VectorXd z = Factor.solve(r);
     Eigen::VectorXd p = z;
     double rz = r.dot(z);
+    const double firstResidual = r.norm();
     for (int k = 0; k < MaximumCGIterations; ++k)
     {
-      if (r.norm() <= tolerance * bnorm)
+      const double residual = r.norm();
+      if (residual <= tolerance * bnorm)
       {
         return x.allFinite();
+      }
+      // The residual falls about geometrically: once its rate so far puts the tolerance well
+      // beyond MaximumCGIterations, factorizing at once saves the remaining iterations (1e6
+      // Diracs: 0.14 s each; a failed run of 15 costs 2 s).
+      if (k >= 4 && residual < firstResidual &&
+        k + std::log(tolerance * bnorm / residual) / (std::log(residual / firstResidual) / k) >
+          1.5 * MaximumCGIterations)
+      {
+        return false;
       }
       const Eigen::VectorXd Ap = A * p;
       const double alpha = rz / p.dot(Ap);
