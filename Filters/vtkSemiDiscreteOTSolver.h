@@ -24,8 +24,10 @@
  * Outputs (all vtkPolyData in the plane z = 0 unless stated, all arrays double unless stated):
  * - Port 0, "Diracs": the Dirac points with the triangles of the weighted Delaunay
  *   triangulation (dual of the power diagram). Point arrays: the input's point arrays, with
- *   `Mass` replaced by the rescaled target masses; `Height` (h_i); `CellMass` (source measure of
- *   the clipped power cell); `Centroid` (3 components, z = 0: density-weighted barycentre of
+ *   `Mass` replaced by the rescaled target masses; `Height` (h_i, rounded to double from the
+ *   solver's ~128 bits: cells recomputed from it can miss their masses by ~1e-9 .. 1e-6
+ *   relative where cells are tiny); `CellMass` (source measure of the clipped power cell, as the
+ *   solver reached it); `Centroid` (3 components, z = 0: density-weighted barycentre of
  *   the clipped cell, i.e. where the Dirac's mass comes from). Field data: `Iterations` (int,
  *   Newton iterations done), `RelativeError` (max_i |CellMass_i - Mass_i| / Mass_i),
  *   `Converged` (int, 1 when RelativeError <= Tolerance), `GradientNormHistory` (Euclidean
