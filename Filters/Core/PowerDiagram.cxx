@@ -105,6 +105,15 @@ bool reweightByFlips(
 }
 } // namespace
 
+void PowerDiagram::takeTriangulationFrom(PowerDiagram& other)
+{
+  if (&other != this && other.Kept)
+  {
+    Kept = std::move(other.Kept);
+    Sites = other.Sites;
+  }
+}
+
 void PowerDiagram::build(
   const std::vector<Vec2>& diracs, const std::vector<Height>& heights, bool onlyWhenNoneHidden)
 {

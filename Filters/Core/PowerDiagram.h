@@ -72,6 +72,11 @@ public:
   void build(const std::vector<Vec2>& diracs, const std::vector<Height>& heights,
     bool onlyWhenNoneHidden = false);
 
+  // Moves the other diagram's kept triangulation here (the other keeps its cells), so that the
+  // next build of this one flips it: a Newton trial starts from the accepted diagram's
+  // triangulation, and only one triangulation is alive per solve (1e6 Diracs: ~200 MiB each).
+  void takeTriangulationFrom(PowerDiagram& other);
+
   int size() const { return static_cast<int>(Sites.size()); }
   // A hidden Dirac has an empty cell in the whole plane.
   bool hidden(int i) const { return Hidden[i] != 0; }

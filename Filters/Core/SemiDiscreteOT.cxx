@@ -474,6 +474,7 @@ void inflateSmallCells(const SourceMeasure& source, const std::vector<Vec2>& dir
       {
         trial[i] -= lowering[i];
       }
+      trialDiagram.takeTriangulationFrom(diagram);
       evaluate(source, diracs, trial, trialDiagram, trialEv, result, false);
       int broken = 0;
       for (int j = 0; j < n; ++j)
@@ -687,6 +688,7 @@ void dampedNewton(const SourceMeasure& source, const std::vector<Vec2>& diracs,
       result.secondsTriangulation += secondsSince(certifying);
       if (!hides)
       {
+        trialDiagram.takeTriangulationFrom(diagram);
         evaluate(source, diracs, trial, trialDiagram, trialEv, result);
         // KMT's rule guarantees global convergence. Near the solution |g|_2 sits at the
         // rounding level of the largest cells while small cells still have relative errors to
