@@ -25,7 +25,7 @@ using WeightedPoint = Regular::Weighted_point;
 using BarePoint = Regular::Bare_point;
 } // namespace
 
-// The regular triangulation kept between builds, for reweight().
+// The regular triangulation kept between builds, for reweightByFlips().
 struct PowerDiagram::Triangulation
 {
   Regular rt;
@@ -43,6 +43,35 @@ double weight(Vec2 y, const Height& h)
   return static_cast<double>(dot(y, y) - 2.0L * h.value());
 }
 
+// True when rt holds exactly these Diracs, each vertex labelled with its index.
+bool triangulates(const Regular& rt, const std::vector<Vec2>& diracs)
+{
+  if (rt.number_of_vertices() + rt.number_of_hidden_vertices() != diracs.size())
+  {
+    return false;
+  }
+  auto same = [&](Regular::Vertex_handle v) {
+    const BarePoint& p = v->point().point();
+    const Vec2 y = diracs[v->info()];
+    return p.x() == y.x && p.y() == y.y;
+  };
+  for (auto v = rt.finite_vertices_begin(); v != rt.finite_vertices_end(); ++v)
+  {
+    if (!same(v))
+    {
+      return false;
+    }
+  }
+  for (auto v = rt.hidden_vertices_begin(); v != rt.hidden_vertices_end(); ++v)
+  {
+    if (!same(v))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
 // Turns the regular triangulation of the same points under other weights into theirs by
 // Lawson flips: every edge whose opposite vertex conflicts with the power circle of its face is
 // flipped, and the edges around it are checked again. A triangulation of all the points that is
@@ -51,11 +80,11 @@ double weight(Vec2 y, const Height& h)
 // quadrilateral is not convex returns false (the caller then inserts from scratch), as does a
 // triangulation that already has hidden vertices. CGAL offers no update of weights; a Newton
 // step moves few edges, so this costs a fraction of a new insertion.
+// rt must triangulate these Diracs.
 bool reweightByFlips(
   Regular& rt, const std::vector<Vec2>& diracs, const std::vector<Height>& heights)
 {
-  if (rt.dimension() != 2 || rt.number_of_hidden_vertices() != 0 ||
-    rt.number_of_vertices() != diracs.size())
+  if (rt.dimension() != 2 || rt.number_of_hidden_vertices() != 0)
   {
     return false;
   }
@@ -110,7 +139,6 @@ void PowerDiagram::takeTriangulationFrom(PowerDiagram& other)
   if (&other != this && other.Kept)
   {
     Kept = std::move(other.Kept);
-    Sites = other.Sites;
   }
 }
 
@@ -118,9 +146,7 @@ void PowerDiagram::build(
   const std::vector<Vec2>& diracs, const std::vector<Height>& heights, bool onlyWhenNoneHidden)
 {
   const int n = static_cast<int>(diracs.size());
-  const bool sameDiracs = Kept && Sites.size() == diracs.size() &&
-    std::equal(Sites.begin(), Sites.end(), diracs.begin(),
-      [](Vec2 a, Vec2 b) { return a.x == b.x && a.y == b.y; });
+  const bool sameDiracs = Kept && triangulates(Kept->rt, diracs);
   Sites = diracs;
   Heights = heights;
   std::unique_ptr<Triangulation> fresh;

@@ -126,6 +126,18 @@ void evaluate(const SourceMeasure& source, const std::vector<Vec2>& diracs,
   timing.secondsIntegration += secondsSince(t0);
 }
 
+// Diagonal of the Newton Hessian: the sum of each Dirac's couplings.
+std::vector<double> hessianDiagonal(int n, const std::vector<Eigen::Triplet<double>>& coupling)
+{
+  std::vector<double> diagonal(n, 0.0);
+  for (const auto& c : coupling)
+  {
+    diagonal[c.row()] += c.value();
+    diagonal[c.col()] += c.value();
+  }
+  return diagonal;
+}
+
 // True when the trial heights certainly hide a Dirac, found without a triangulation: Dirac i is
 // hidden when its lifted point (y_i, h_i) lies above the plane through the lifted points of
 // three others whose triangle contains y_i (it is then not a vertex of the lower hull). The
@@ -231,11 +243,9 @@ public:
     auto row = [this](int i) { return i < Pinned ? i : i - 1; };
     std::vector<Eigen::Triplet<double>> entries;
     entries.reserve(coupling.size() + n);
-    std::vector<double> diagonal(n, 0.0);
+    const std::vector<double> diagonal = hessianDiagonal(n, coupling);
     for (const auto& c : coupling)
     {
-      diagonal[c.row()] += c.value();
-      diagonal[c.col()] += c.value();
       if (c.row() != Pinned && c.col() != Pinned)
       {
         // Lower triangle only: both factorizations read one triangle.
@@ -445,12 +455,7 @@ void inflateSmallCells(const SourceMeasure& source, const std::vector<Vec2>& dir
   PowerDiagram trialDiagram;
   for (int round = 0; round < Rounds; ++round)
   {
-    std::vector<double> diagonal(n, 0.0);
-    for (const auto& c : ev.coupling)
-    {
-      diagonal[c.row()] += c.value();
-      diagonal[c.col()] += c.value();
-    }
+    const std::vector<double> diagonal = hessianDiagonal(n, ev.coupling);
     std::vector<double> lowering(n, 0.0);
     int small = 0;
     for (int i = 0; i < n; ++i)
