@@ -72,21 +72,33 @@ bool triangulates(const Regular& rt, const std::vector<Vec2>& diracs)
   return true;
 }
 
-// Turns the regular triangulation of the same points under other weights into theirs by
-// Lawson flips: every edge whose opposite vertex conflicts with the power circle of its face is
-// flipped, and the edges around it are checked again. A triangulation of all the points that is
-// locally regular everywhere is the regular triangulation (Edelsbrunner & Shah), so when the
-// flips end the result is exact. Flips cannot hide a vertex: a non-regular edge whose
-// quadrilateral is not convex returns false (the caller then inserts from scratch), as does a
-// triangulation that already has hidden vertices. CGAL offers no update of weights; a Newton
-// step moves few edges, so this costs a fraction of a new insertion.
-// rt must triangulate these Diracs.
-bool reweightByFlips(
-  Regular& rt, const std::vector<Vec2>& diracs, const std::vector<Height>& heights)
+enum class Flips
 {
+  Regular,     // rt is now the regular triangulation
+  HidesADirac, // hidden: a Dirac certainly has no cell under these weights
+  Failed       // rt cannot be flipped (it has hidden vertices, or the flips did not end)
+};
+
+// Turns a triangulation of all the points (the regular one under other weights, or one where
+// earlier flips stopped) into the regular triangulation under these weights by Lawson flips:
+// every edge whose opposite vertex conflicts with the power circle of its face is flipped, and
+// the edges around it are checked again. A triangulation of all the points that is locally
+// regular everywhere is the regular triangulation (Edelsbrunner & Shah), so when the flips end
+// the result is exact. Flips cannot hide a vertex; they stop at a non-regular edge whose
+// quadrilateral is not convex. Its reflex vertex then lies in the triangle of the other three,
+// with its lifted point above theirs (the two triangles along the edge are above the third
+// one's plane), so it is off the lower hull: it goes to hidden with that triangle, and the
+// flips go on elsewhere (or stop, with stopAtFirstHidden). CGAL offers no update of weights; a
+// Newton step moves few edges, so this costs a fraction of a new insertion.
+// rt must triangulate these Diracs.
+Flips reweightByFlips(Regular& rt, const std::vector<Vec2>& diracs,
+  const std::vector<Height>& heights, bool stopAtFirstHidden,
+  std::vector<std::pair<int, Triangle>>& hidden)
+{
+  hidden.clear();
   if (rt.dimension() != 2 || rt.number_of_hidden_vertices() != 0)
   {
-    return false;
+    return Flips::Failed;
   }
   for (auto v = rt.finite_vertices_begin(); v != rt.finite_vertices_end(); ++v)
   {
@@ -101,7 +113,7 @@ bool reweightByFlips(
   {
     if (budget-- == 0)
     {
-      return false;
+      return Flips::Failed;
     }
     const auto [f, i] = stack.back();
     stack.pop_back();
@@ -119,9 +131,19 @@ bool reweightByFlips(
     const BarePoint& q = f->vertex(Regular::ccw(i))->point().point();
     const BarePoint& r = f->vertex(Regular::cw(i))->point().point();
     const BarePoint& t = g->vertex(j)->point().point();
-    if (orientation(p, q, t) != CGAL::LEFT_TURN || orientation(p, t, r) != CGAL::LEFT_TURN)
+    // p, q, r counter-clockwise in f; t across the edge qr. A collinear triple counts as
+    // reflex: its middle point then lies on a segment whose lifted ends are below its own.
+    const bool qReflex = orientation(p, q, t) != CGAL::LEFT_TURN;
+    if (qReflex || orientation(p, t, r) != CGAL::LEFT_TURN)
     {
-      return false;
+      const int a = f->vertex(i)->info(), b = f->vertex(Regular::ccw(i))->info(),
+                c = f->vertex(Regular::cw(i))->info(), d = g->vertex(j)->info();
+      hidden.emplace_back(qReflex ? b : c, qReflex ? Triangle{ a, d, c } : Triangle{ a, b, d });
+      if (stopAtFirstHidden)
+      {
+        return Flips::HidesADirac;
+      }
+      continue;
     }
     rt.tds().flip(f, i);
     for (int k = 0; k < 3; ++k)
@@ -130,9 +152,20 @@ bool reweightByFlips(
       stack.emplace_back(g, k);
     }
   }
-  return true;
+  return hidden.empty() ? Flips::Regular : Flips::HidesADirac;
 }
 } // namespace
+
+void PowerDiagram::clearCells(int n)
+{
+  Triangles.clear();
+  PowerVertices.clear();
+  PowerVertexCorrections.clear();
+  RingFace.clear();
+  Offsets.assign(n + 1, 0);
+  Adjacency.clear();
+  Dimension = 0;
+}
 
 void PowerDiagram::takeTriangulationFrom(PowerDiagram& other)
 {
@@ -143,14 +176,33 @@ void PowerDiagram::takeTriangulationFrom(PowerDiagram& other)
 }
 
 void PowerDiagram::build(
-  const std::vector<Vec2>& diracs, const std::vector<Height>& heights, bool onlyWhenNoneHidden)
+  const std::vector<Vec2>& diracs, const std::vector<Height>& heights, WhenHidden whenHidden)
 {
   const int n = static_cast<int>(diracs.size());
   const bool sameDiracs = Kept && triangulates(Kept->rt, diracs);
   Sites = diracs;
   Heights = heights;
   std::unique_ptr<Triangulation> fresh;
-  if (!sameDiracs || !reweightByFlips(Kept->rt, diracs, heights))
+  std::vector<std::pair<int, Triangle>> certainlyHidden;
+  const Flips flips = sameDiracs
+    ? reweightByFlips(Kept->rt, diracs, heights, whenHidden == WhenHidden::StopAtFirst,
+        certainlyHidden)
+    : Flips::Failed;
+  if (flips == Flips::HidesADirac && whenHidden != WhenHidden::FindAll)
+  {
+    // The kept triangulation, where the flips stopped, is still one of all the points.
+    clearCells(n);
+    Hidden.assign(n, 0);
+    HiddenFace.assign(n, Triangle{ -1, -1, -1 });
+    for (const auto& [i, face] : certainlyHidden)
+    {
+      Hidden[i] = 1;
+      HiddenFace[i] = face;
+    }
+    HiddenCount = static_cast<int>(std::count(Hidden.begin(), Hidden.end(), 1));
+    return;
+  }
+  if (flips != Flips::Regular)
   {
     std::vector<std::pair<WeightedPoint, int>> input;
     input.reserve(n);
@@ -186,24 +238,11 @@ void PowerDiagram::build(
       HiddenFace[v->info()] = { f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info() };
     }
   }
-  if (onlyWhenNoneHidden && HiddenCount > 0)
+  clearCells(n);
+  if (whenHidden != WhenHidden::FindAll && HiddenCount > 0)
   {
-    Triangles.clear();
-    PowerVertices.clear();
-    PowerVertexCorrections.clear();
-    RingFace.clear();
-    Offsets.assign(n + 1, 0);
-    Adjacency.clear();
-    Dimension = 0;
     return;
   }
-
-  Triangles.clear();
-  PowerVertices.clear();
-  PowerVertexCorrections.clear();
-  RingFace.clear();
-  Offsets.assign(n + 1, 0);
-  Adjacency.clear();
   Dimension = rt.dimension();
   if (Dimension == 2)
   {

@@ -66,11 +66,17 @@ public:
 
   // Cells W_i = {x : <x, y_i> - h_i >= <x, y_j> - h_j for all j}: the power diagram of y_i with
   // weights |y_i|^2 - 2 h_i.
-  // With onlyWhenNoneHidden, a diagram with a hidden Dirac stops after counting them (only
-  // hidden() and hiddenCount() are then valid): a Newton trial that hides a Dirac is rejected
-  // anyway, and the power vertices and rings cost a fifth of the build.
+  // What a build does when Diracs are hidden. A Newton trial that hides a Dirac is rejected
+  // anyway, and what a whole diagram costs beyond finding one would be wasted: a new insertion
+  // (the kept triangulation's flips stop at hidden Diracs), the power vertices and the rings.
+  enum class WhenHidden
+  {
+    FindAll,     // the whole diagram, every hidden Dirac with its hiddenFace()
+    ReportSome,  // no cells; hidden() and hiddenFace() for the Diracs found certainly hidden
+    StopAtFirst  // no cells; hidden() for the first Dirac found certainly hidden
+  };
   void build(const std::vector<Vec2>& diracs, const std::vector<Height>& heights,
-    bool onlyWhenNoneHidden = false);
+    WhenHidden whenHidden = WhenHidden::FindAll);
 
   // Moves the other diagram's kept triangulation here (the other keeps its cells), so that the
   // next build of this one flips it: a Newton trial starts from the accepted diagram's
@@ -99,6 +105,7 @@ private:
   // The power vertex rounded to double, and what the rounding left out.
   void powerVertex(int a, int b, int c, Vec2& rounded, Vec2& correction) const;
   void ringCell(int i, Vec2 lo, Vec2 hi, PowerCell& out) const;
+  void clearCells(int n);
 
   // The last regular triangulation: a build for the same Diracs under new heights flips it
   // (a Newton step changes few edges) instead of inserting every Dirac again.

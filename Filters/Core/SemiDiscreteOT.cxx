@@ -45,18 +45,19 @@ void sourceBox(const SourceMeasure& source, Vec2& lo, Vec2& hi)
   hi = hi + Vec2{ margin, margin };
 }
 
-// Cell masses, moments and (withCouplings) Hessian couplings at the given heights. With
-// stopAtHidden, a hidden Dirac (empty cell) ends the evaluation early with all masses 0: a
-// Newton trial is then rejected anyway, without paying for the integration.
+// Cell masses, moments and (withCouplings) Hessian couplings at the given heights. Unless
+// whenHidden is FindAll, a hidden Dirac (empty cell) ends the evaluation early with all masses
+// 0: a Newton trial is then rejected anyway, without paying for the integration.
 void evaluate(const SourceMeasure& source, const std::vector<Vec2>& diracs,
   const std::vector<Height>& heights, PowerDiagram& diagram, Evaluation& ev, OTResult& timing,
-  bool stopAtHidden = true, bool withCouplings = true)
+  PowerDiagram::WhenHidden whenHidden = PowerDiagram::WhenHidden::StopAtFirst,
+  bool withCouplings = true)
 {
   const int n = static_cast<int>(diracs.size());
   auto t0 = Clock::now();
-  diagram.build(diracs, heights, stopAtHidden);
+  diagram.build(diracs, heights, whenHidden);
   timing.secondsTriangulation += secondsSince(t0);
-  if (stopAtHidden && diagram.hiddenCount() > 0)
+  if (whenHidden != PowerDiagram::WhenHidden::FindAll && diagram.hiddenCount() > 0)
   {
     ev.cellMass.assign(n, 0.0);
     ev.moment.assign(n, Vec2{});
@@ -498,11 +499,14 @@ void inflateSmallCells(const SourceMeasure& source, const std::vector<Vec2>& dir
         trial[i] -= lowering[i];
       }
       trialDiagram.takeTriangulationFrom(diagram);
-      evaluate(source, diracs, trial, trialDiagram, trialEv, result, false);
+      evaluate(source, diracs, trial, trialDiagram, trialEv, result,
+        PowerDiagram::WhenHidden::ReportSome);
+      // Broken: the Diracs found hidden, or else those whose cells left the domain.
+      const bool hides = trialDiagram.hiddenCount() > 0;
       int broken = 0;
       for (int j = 0; j < n; ++j)
       {
-        if (trialEv.cellMass[j] > 0.0 || ev.cellMass[j] <= 0.0)
+        if (hides ? !trialDiagram.hidden(j) : trialEv.cellMass[j] > 0.0 || ev.cellMass[j] <= 0.0)
         {
           continue;
         }
@@ -908,7 +912,7 @@ CellMeasures computeCellMeasures(
   PowerDiagram diagram;
   Evaluation ev;
   evaluate(source, diracs, std::vector<Height>(heights.begin(), heights.end()), diagram, ev,
-    unusedTiming, false, false);
+    unusedTiming, PowerDiagram::WhenHidden::FindAll, false);
   CellMeasures measures;
   measures.mass = ev.cellMass;
   measures.centroid.resize(diracs.size());

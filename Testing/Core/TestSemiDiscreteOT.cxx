@@ -218,6 +218,20 @@ TEST(PowerDiagram, HeightsKeepStepsBelowTheLongDoubleSpacing)
   EXPECT_TRUE(h > moved);
 }
 
+// The diagram's triangles, each from its least Dirac id, in lexicographic order.
+static std::vector<std::array<int, 3>> sortedTriangles(const PowerDiagram& d)
+{
+  std::vector<std::array<int, 3>> t;
+  for (Triangle f : d.triangles())
+  {
+    std::array<int, 3> a{ f[0], f[1], f[2] };
+    std::rotate(a.begin(), std::min_element(a.begin(), a.end()), a.end());
+    t.push_back(a);
+  }
+  std::sort(t.begin(), t.end());
+  return t;
+}
+
 TEST(PowerDiagram, RebuildUnderNewHeightsMatchesAFreshOne)
 {
   // The second build of a diagram flips its kept triangulation; it must equal a diagram built
@@ -229,17 +243,6 @@ TEST(PowerDiagram, RebuildUnderNewHeightsMatchesAFreshOne)
     h[i] = 0.5L * dot(y[i], y[i]);
   PowerDiagram kept;
   kept.build(y, h);
-  auto sortedTriangles = [](const PowerDiagram& d) {
-    std::vector<std::array<int, 3>> t;
-    for (Triangle f : d.triangles())
-    {
-      std::array<int, 3> a{ f[0], f[1], f[2] };
-      std::rotate(a.begin(), std::min_element(a.begin(), a.end()), a.end());
-      t.push_back(a);
-    }
-    std::sort(t.begin(), t.end());
-    return t;
-  };
   // A quadratic term of alternating sign changes most edges from one build to the next; noise of
   // 1e-4 and up hides Diracs (spacing ~0.03).
   double shear = 0.3;
@@ -263,6 +266,69 @@ TEST(PowerDiagram, RebuildUnderNewHeightsMatchesAFreshOne)
     EXPECT_EQ(sortedTriangles(kept), sortedTriangles(fresh)) << amplitude;
     std::printf("height noise %.0e: %d hidden\n", amplitude, fresh.hiddenCount());
   }
+}
+
+TEST(PowerDiagram, DiracsReportedHiddenByStoppedFlipsAreHidden)
+{
+  // A build that stops at hidden Diracs (Newton trials, inflation attempts) learns them from
+  // flips that cannot go on. Every Dirac so reported must be hidden in a diagram built from
+  // scratch, under a plane of three Diracs whose triangle holds it; a stop must happen exactly
+  // when Diracs are hidden; and the triangulation where the flips stopped must still flip into
+  // the next diagram.
+  const auto y = randomInDisk(3000, 6);
+  std::mt19937 rng(7);
+  std::vector<Height> h(y.size());
+  for (size_t i = 0; i < y.size(); ++i)
+    h[i] = 0.5L * dot(y[i], y[i]);
+  PowerDiagram kept;
+  kept.build(y, h);
+  int reported = 0, stops = 0;
+  for (const auto whenHidden : { PowerDiagram::WhenHidden::StopAtFirst,
+         PowerDiagram::WhenHidden::ReportSome })
+  {
+    for (const double amplitude : { 1e-3, 1e-6, 3e-4, 0.0, 1e-4, 1e-5, 2e-3 })
+    {
+      std::uniform_real_distribution<double> noise(-amplitude, amplitude);
+      for (size_t i = 0; i < y.size(); ++i)
+        h[i] = 0.5L * dot(y[i], y[i]) + noise(rng);
+      kept.build(y, h, whenHidden);
+      PowerDiagram fresh;
+      fresh.build(y, h);
+      ASSERT_EQ(kept.hiddenCount() > 0, fresh.hiddenCount() > 0) << amplitude;
+      if (kept.hiddenCount() > 0)
+      {
+        ++stops;
+        EXPECT_TRUE(kept.triangles().empty());
+        if (whenHidden == PowerDiagram::WhenHidden::StopAtFirst)
+          EXPECT_EQ(kept.hiddenCount(), 1);
+        for (int i = 0; i < kept.size(); ++i)
+        {
+          if (!kept.hidden(i))
+            continue;
+          ++reported;
+          ASSERT_TRUE(fresh.hidden(i)) << i;
+          if (whenHidden == PowerDiagram::WhenHidden::ReportSome)
+          {
+            // y_i in the triangle, its height above the plane of the triangle's heights.
+            const Triangle f = kept.hiddenFace(i);
+            ASSERT_GE(f[0], 0);
+            const Vec2 a = y[f[0]], b = y[f[1]], c = y[f[2]];
+            const double area = cross(b - a, c - a);
+            const double lb = cross(c - y[i], a - y[i]) / area, lc = cross(a - y[i], b - y[i]) / area;
+            EXPECT_GE(std::min({ 1.0 - lb - lc, lb, lc }), -1e-12);
+            const long double plane = h[f[0]].value() + lb * (h[f[1]] - h[f[0]]) + lc * (h[f[2]] - h[f[0]]);
+            EXPECT_LT(plane, h[i].value()) << i;
+          }
+        }
+      }
+      else
+      {
+        ASSERT_EQ(sortedTriangles(kept), sortedTriangles(fresh)) << amplitude;
+      }
+    }
+  }
+  std::printf("%d stops at hidden Diracs, %d Diracs reported hidden\n", stops, reported);
+  EXPECT_GE(stops, 6);
 }
 
 TEST(SemiDiscreteOT, HighContrastNeedsFewNewtonIterations)
