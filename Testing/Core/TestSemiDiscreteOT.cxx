@@ -218,6 +218,15 @@ TEST(PowerDiagram, HeightsKeepStepsBelowTheLongDoubleSpacing)
   EXPECT_TRUE(h > moved);
 }
 
+// Heights whose power diagram is the Voronoi diagram.
+static std::vector<Height> voronoiHeights(const std::vector<Vec2>& y)
+{
+  std::vector<Height> h(y.size());
+  for (size_t i = 0; i < y.size(); ++i)
+    h[i] = 0.5L * dot(y[i], y[i]);
+  return h;
+}
+
 // The diagram's triangles, each from its least Dirac id, in lexicographic order.
 static std::vector<std::array<int, 3>> sortedTriangles(const PowerDiagram& d)
 {
@@ -238,9 +247,7 @@ TEST(PowerDiagram, RebuildUnderNewHeightsMatchesAFreshOne)
   // from scratch, for steps that change many edges and for steps that hide Diracs.
   const auto y = randomInDisk(3000, 4);
   std::mt19937 rng(5);
-  std::vector<Height> h(y.size());
-  for (size_t i = 0; i < y.size(); ++i)
-    h[i] = 0.5L * dot(y[i], y[i]);
+  std::vector<Height> h = voronoiHeights(y);
   PowerDiagram kept;
   kept.build(y, h);
   // A quadratic term of alternating sign changes most edges from one build to the next; noise of
@@ -277,9 +284,7 @@ TEST(PowerDiagram, DiracsReportedHiddenByStoppedFlipsAreHidden)
   // the next diagram.
   const auto y = randomInDisk(3000, 6);
   std::mt19937 rng(7);
-  std::vector<Height> h(y.size());
-  for (size_t i = 0; i < y.size(); ++i)
-    h[i] = 0.5L * dot(y[i], y[i]);
+  std::vector<Height> h = voronoiHeights(y);
   PowerDiagram kept;
   kept.build(y, h);
   int reported = 0, stops = 0;
