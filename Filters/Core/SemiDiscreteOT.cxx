@@ -278,13 +278,16 @@ public:
 
     t0 = Clock::now();
     // Consecutive Newton Hessians differ little (same Diracs, nearby heights), so the last
-    // factorization preconditions conjugate gradients; a new factorization (~20 s at 1e6
-    // Diracs) is made only when that does not converge quickly.
+    // factorization preconditions conjugate gradients; a new factorization (~3.5 s at 1e6
+    // Diracs) is made only when that does not converge quickly, or when it barely did last
+    // time: the Hessians drift further from the factorized one with every step (1e6 Diracs: a
+    // run of 14 iterations was followed by one that failed after 14, 2 s lost).
     Eigen::VectorXd x;
-    bool ok =
-      HaveFactor && Factor.size() == m && preconditionedCG(L, rhs, inverseMass, target, x);
+    bool ok = HaveFactor && Factor.size() == m && LastCGIterations <= StaleFactorCGIterations &&
+      preconditionedCG(L, rhs, inverseMass, target, x);
     if (!ok)
     {
+      LastCGIterations = 0;
       ok = Factor.compute(L);
       HaveFactor = ok;
       if (ok)
@@ -313,7 +316,7 @@ private:
   using SparseMatrix = Eigen::SparseMatrix<double>;
 
   bool preconditionedCG(const SparseMatrix& L, const Eigen::VectorXd& b,
-    const Eigen::VectorXd& inverseMass, ResidualTarget target, Eigen::VectorXd& x) const
+    const Eigen::VectorXd& inverseMass, ResidualTarget target, Eigen::VectorXd& x)
   {
     const double bnorm = b.norm();
     if (bnorm == 0.0)
@@ -342,6 +345,7 @@ private:
       const double current = distance(r);
       if (current <= 1.0)
       {
+        LastCGIterations = k;
         return x.allFinite();
       }
       // The residual falls about geometrically: once its rate so far puts the target well
@@ -362,10 +366,13 @@ private:
       p = z + (rzNext / rz) * p;
       rz = rzNext;
     }
+    LastCGIterations = MaximumCGIterations;
     return distance(r) <= 1.0 && x.allFinite();
   }
 
   static constexpr int MaximumCGIterations = 15;
+  static constexpr int StaleFactorCGIterations = 10;
+  int LastCGIterations = 0;
   int Pinned;
   bool HaveFactor = false;
   SparseCholesky Factor;
@@ -619,7 +626,8 @@ bool startHeights(const SourceMeasure& source, const std::vector<Vec2>& diracs,
 
 // Relative residuals of the Newton solves: near the solution (full steps) the direction must
 // be exact for quadratic convergence to 1e-10; while steps are damped 1e-6 suffices (measured,
-// 1e4 Diracs of contrast 1e4: 1e-4 .. 1e-8 take the same 27 iterations; 1e-2 never converged).
+// 1e4 Diracs of contrast 1e4: 1e-4 .. 1e-8 take the same 27 iterations; 1e-2 never converged;
+// 1e-4 stalled the 6.3e4 Diracs of the coarsest level for 1e6 at relative error ~1).
 constexpr double MassFloorFactor = 0.05;
 constexpr double ExactResidual = 1e-11;
 // Above this relative error a stalled solve blames its coarse-to-fine start (the coarse levels
@@ -691,15 +699,15 @@ void dampedNewton(const SourceMeasure& source, const std::vector<Vec2>& diracs,
       g[i] = ev.cellMass[i] - nu[i];
     }
     const double gnorm = gradientNorm(ev.cellMass, nu);
-    // While the steps are damped, an inexact Newton direction does as well: the last
-    // factorization preconditions conjugate gradients down to DampedResidual, and a new one is
-    // needed far less often (1e5 Diracs of contrast 1e4: solve 17 -> 11 s, same iterations).
-    const NewtonSystem::ResidualTarget target = lastStep < 1.0
+    // Far from the solution (damped steps, or cells off by more than their masses) an inexact
+    // Newton direction does as well: the last factorization preconditions conjugate gradients
+    // down to DampedResidual, and a new one is needed far less often (1e5 Diracs of contrast
+    // 1e4: solve 17 -> 11 s, same iterations).
+    const double error = result.relativeError;
+    const NewtonSystem::ResidualTarget target = lastStep < 1.0 || error >= 1.0
       ? NewtonSystem::ResidualTarget{ DampedResidual, 0.0 }
       : NewtonSystem::ResidualTarget{ ExactResidual,
-          result.relativeError < 1.0 ? std::max(ToleranceShare * tolerance,
-                                          QuadraticShare * result.relativeError * result.relativeError)
-                                      : 0.0 };
+          std::max(ToleranceShare * tolerance, QuadraticShare * error * error) };
     if (!system.solve(n, ev.coupling, g, nu, d, target, result))
     {
       result.message = "the Newton system could not be factorized (disconnected cells?)";
