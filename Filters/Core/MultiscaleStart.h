@@ -19,7 +19,7 @@ constexpr int MultiscaleMinimumDiracs = 20000;
 constexpr double MaximumSpacingSpread = 8.0;
 
 // Heights for the Diracs y_i with masses nu (summing to the source's mass) from the solution of
-// a coarse problem: a quarter of the Diracs and their hull, each carrying the masses of the
+// a coarse problem: a sixth of the Diracs and their hull, each carrying the masses of the
 // Diracs nearest to it, solved by solveSemiDiscreteOT (itself coarse-to-fine while large
 // enough). The fine heights sample a smoothed dual potential of the coarse solution, a convex
 // function, so that no Dirac is hidden. Unit-disk source only. Returns false, leaving h alone,

@@ -349,7 +349,7 @@ TEST(SemiDiscreteOT, HighContrastNeedsFewNewtonIterations)
 
 TEST(SemiDiscreteOT, CoarseToFineStartTakesFewerNewtonIterations)
 {
-  // 3e4 Diracs: one coarse level of 7.5e3 (and the Diracs' hull), solved from the shrunk
+  // 3e4 Diracs: one coarse level of 5e3 (and the Diracs' hull), solved from the shrunk
   // Voronoi start. Measured: 26 Newton iterations single-level, 9 coarse-to-fine.
   const auto y = randomInDisk(30000, 7);
   const auto m = mixtureMasses(y, 1e4);
