@@ -336,6 +336,59 @@ TEST(PowerDiagram, DiracsReportedHiddenByStoppedFlipsAreHidden)
   EXPECT_GE(stops, 6);
 }
 
+TEST(PowerDiagram, RebuildAfterAFewHeightsChangeMatchesAFreshOne)
+{
+  // When few heights change, a rebuild checks only the edges around them (and those where the
+  // last flips stopped at a hidden Dirac); it must still equal a diagram built from scratch.
+  const auto y = randomInDisk(3000, 8);
+  std::mt19937 rng(9);
+  std::uniform_int_distribution<int> pick(0, static_cast<int>(y.size()) - 1);
+  std::vector<Height> h = voronoiHeights(y);
+  PowerDiagram kept;
+  kept.build(y, h);
+  int stops = 0, matches = 0;
+  for (int round = 0; round < 24; ++round)
+  {
+    // Lowered by 3e-3 a Dirac takes its neighbours' cells (spacing ~0.03); raised, it hides.
+    const double amplitude = (round % 3 == 0) ? 3e-3 : (round % 3 == 1 ? 1e-5 : 3e-4);
+    std::uniform_real_distribution<double> noise(-amplitude, amplitude);
+    std::vector<Height> trial = h;
+    for (int k = 0; k < 20; ++k)
+      trial[pick(rng)] += noise(rng);
+    const auto whenHidden =
+      round % 2 ? PowerDiagram::WhenHidden::ReportSome : PowerDiagram::WhenHidden::FindAll;
+    kept.build(y, trial, whenHidden);
+    PowerDiagram fresh;
+    fresh.build(y, trial);
+    if (whenHidden == PowerDiagram::WhenHidden::ReportSome && fresh.hiddenCount() > 0)
+    {
+      ++stops;
+      ASSERT_GT(kept.hiddenCount(), 0) << round;
+      for (int i = 0; i < kept.size(); ++i)
+        ASSERT_TRUE(!kept.hidden(i) || fresh.hidden(i)) << i;
+      // Other heights change, the ones that hid Diracs stay: the edges where the flips stopped
+      // must be checked again although no vertex of theirs changed.
+      std::vector<Height> other = trial;
+      for (int k = 0; k < 20; ++k)
+        other[pick(rng)] += 1e-7;
+      PowerDiagram otherFresh;
+      otherFresh.build(y, other);
+      kept.build(y, other);
+      ASSERT_EQ(kept.hiddenCount(), otherFresh.hiddenCount()) << round;
+      EXPECT_EQ(sortedTriangles(kept), sortedTriangles(otherFresh)) << round;
+      continue; // as a rejected trial: h stays
+    }
+    ++matches;
+    ASSERT_EQ(kept.hiddenCount(), fresh.hiddenCount()) << round;
+    EXPECT_EQ(sortedTriangles(kept), sortedTriangles(fresh)) << round;
+    if (fresh.hiddenCount() == 0)
+      h = trial;
+  }
+  std::printf("%d stops at hidden Diracs, %d diagrams compared\n", stops, matches);
+  EXPECT_GE(stops, 3);
+  EXPECT_GE(matches, 12);
+}
+
 TEST(SemiDiscreteOT, HighContrastNeedsFewNewtonIterations)
 {
   // The shrunk Voronoi start: from the plain Voronoi diagram this problem took 84 iterations.
