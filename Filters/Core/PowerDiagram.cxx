@@ -28,6 +28,15 @@ using BarePoint = Regular::Bare_point;
 // The regular triangulation kept between builds, for reweightByFlips().
 struct PowerDiagram::Triangulation
 {
+  enum class Flips
+  {
+    Regular,     // rt is now the regular triangulation
+    HidesADirac, // hidden: a Dirac certainly has no cell under these weights
+    Failed       // rt cannot be flipped (it has hidden vertices, or the flips did not end)
+  };
+  Flips reweightByFlips(const std::vector<Vec2>& diracs, const std::vector<Height>& heights,
+    bool stopAtFirstHidden, std::vector<std::pair<int, Triangle>>& hidden);
+
   Regular rt;
   // Settled: every edge is regular under the vertices' weights, except perhaps those listed
   // (where the last flips stopped at a hidden Dirac). A build that changes a few weights then
@@ -77,12 +86,7 @@ bool triangulates(const Regular& rt, const std::vector<Vec2>& diracs)
   return true;
 }
 
-enum class Flips
-{
-  Regular,     // rt is now the regular triangulation
-  HidesADirac, // hidden: a Dirac certainly has no cell under these weights
-  Failed       // rt cannot be flipped (it has hidden vertices, or the flips did not end)
-};
+} // namespace
 
 // Turns a triangulation of all the points (the regular one under other weights, or one where
 // earlier flips stopped) into the regular triangulation under these weights by Lawson flips:
@@ -98,12 +102,11 @@ enum class Flips
 // Only the edges whose quadrilaterals hold a vertex of changed weight can turn non-regular: when
 // few weights change (the inflation of small cells before Newton), only those are checked
 // (1e6 Diracs: ~0.4 s -> ~0.05 s per attempt).
-// kept.rt must triangulate these Diracs.
-Flips reweightByFlips(PowerDiagram::Triangulation& kept, const std::vector<Vec2>& diracs,
-  const std::vector<Height>& heights, bool stopAtFirstHidden,
+// rt must triangulate these Diracs.
+PowerDiagram::Triangulation::Flips PowerDiagram::Triangulation::reweightByFlips(
+  const std::vector<Vec2>& diracs, const std::vector<Height>& heights, bool stopAtFirstHidden,
   std::vector<std::pair<int, Triangle>>& hidden)
 {
-  Regular& rt = kept.rt;
   hidden.clear();
   if (rt.dimension() != 2 || rt.number_of_hidden_vertices() != 0)
   {
@@ -121,7 +124,7 @@ Flips reweightByFlips(PowerDiagram::Triangulation& kept, const std::vector<Vec2>
     }
   }
   std::vector<Regular::Edge> stack;
-  if (kept.settled && changed.size() < rt.number_of_vertices() / 8)
+  if (settled && changed.size() < rt.number_of_vertices() / 8)
   {
     for (const auto v : changed)
     {
@@ -136,7 +139,7 @@ Flips reweightByFlips(PowerDiagram::Triangulation& kept, const std::vector<Vec2>
         }
       } while (++face != end);
     }
-    for (const auto& [a, b] : kept.unsettled)
+    for (const auto& [a, b] : unsettled)
     {
       Regular::Face_handle f;
       int i;
@@ -150,8 +153,8 @@ Flips reweightByFlips(PowerDiagram::Triangulation& kept, const std::vector<Vec2>
   {
     stack.assign(rt.finite_edges_begin(), rt.finite_edges_end());
   }
-  kept.settled = false;
-  kept.unsettled.clear();
+  settled = false;
+  unsettled.clear();
   const auto orientation = rt.geom_traits().orientation_2_object();
   // Lawson's flips end after finitely many steps; the budget only guards against a bug.
   size_t budget = 20 * stack.size() + 1000;
@@ -189,7 +192,7 @@ Flips reweightByFlips(PowerDiagram::Triangulation& kept, const std::vector<Vec2>
       {
         return Flips::HidesADirac;
       }
-      kept.unsettled.emplace_back(f->vertex(Regular::ccw(i)), f->vertex(Regular::cw(i)));
+      unsettled.emplace_back(f->vertex(Regular::ccw(i)), f->vertex(Regular::cw(i)));
       continue;
     }
     rt.tds().flip(f, i);
@@ -199,10 +202,9 @@ Flips reweightByFlips(PowerDiagram::Triangulation& kept, const std::vector<Vec2>
       stack.emplace_back(g, k);
     }
   }
-  kept.settled = true;
+  settled = true;
   return hidden.empty() ? Flips::Regular : Flips::HidesADirac;
 }
-} // namespace
 
 void PowerDiagram::clearCells(int n)
 {
@@ -232,9 +234,9 @@ void PowerDiagram::build(
   Heights = heights;
   std::unique_ptr<Triangulation> fresh;
   std::vector<std::pair<int, Triangle>> certainlyHidden;
+  using Flips = Triangulation::Flips;
   const Flips flips = sameDiracs
-    ? reweightByFlips(*Kept, diracs, heights, whenHidden == WhenHidden::StopAtFirst,
-        certainlyHidden)
+    ? Kept->reweightByFlips(diracs, heights, whenHidden == WhenHidden::StopAtFirst, certainlyHidden)
     : Flips::Failed;
   if (flips == Flips::HidesADirac && whenHidden != WhenHidden::FindAll)
   {

@@ -59,8 +59,6 @@ private:
 class PowerDiagram
 {
 public:
-  struct Triangulation; // CGAL's, opaque here
-
   PowerDiagram();
   ~PowerDiagram();
   PowerDiagram(PowerDiagram&&) noexcept;
@@ -111,6 +109,7 @@ private:
 
   // The last regular triangulation: a build for the same Diracs under new heights flips it
   // (a Newton step changes few edges) instead of inserting every Dirac again.
+  struct Triangulation;
   std::unique_ptr<Triangulation> Kept;
   int Dimension = 0;
   std::vector<Vec2> PowerVertices; // one per finite face (weighted circumcentre)
