@@ -35,8 +35,7 @@ using namespace otparam_vtk;
 //------------------------------------------------------------------------------
 vtkAdaptiveDensitySampler::vtkAdaptiveDensitySampler()
 {
-  this->SetInputArrayToProcess(
-    0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "AreaDensity");
+  this->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "AreaDensity");
 }
 
 //------------------------------------------------------------------------------
@@ -79,8 +78,8 @@ int vtkAdaptiveDensitySampler::RequestData(
   }
   if (this->SizeRule < SQRT_DENSITY || this->SizeRule > DENSITY)
   {
-    vtkErrorMacro("SizeRule must be 0 (R * sqrt(density)) or 1 (R * density); got "
-      << this->SizeRule << ".");
+    vtkErrorMacro(
+      "SizeRule must be 0 (R * sqrt(density)) or 1 (R * density); got " << this->SizeRule << ".");
     return 0;
   }
   if (this->NumberOfSamples < 3)
@@ -90,10 +89,9 @@ int vtkAdaptiveDensitySampler::RequestData(
   }
   if (this->NumberOfSamples > this->MaximumNumberOfSamples)
   {
-    vtkErrorMacro("NumberOfSamples = " << this->NumberOfSamples
-                                       << " is above MaximumNumberOfSamples = "
-                                       << this->MaximumNumberOfSamples
-                                       << "; raise MaximumNumberOfSamples or ask for fewer.");
+    vtkErrorMacro("NumberOfSamples = "
+      << this->NumberOfSamples << " is above MaximumNumberOfSamples = "
+      << this->MaximumNumberOfSamples << "; raise MaximumNumberOfSamples or ask for fewer.");
     return 0;
   }
   if (!(this->MinimumAngle > 0.0) || !(this->MinimumAngle <= 35.0))
@@ -158,9 +156,8 @@ int vtkAdaptiveDensitySampler::RequestData(
     }
     if (!badIds.empty())
     {
-      vtkErrorMacro("Triangle id(s) " << FormatIds(badIds)
-                                      << " use point ids outside the input's " << numberOfPoints
-                                      << " points.");
+      vtkErrorMacro("Triangle id(s) " << FormatIds(badIds) << " use point ids outside the input's "
+                                      << numberOfPoints << " points.");
       return 0;
     }
   }
@@ -240,8 +237,7 @@ int vtkAdaptiveDensitySampler::RequestData(
     {
       vtkErrorMacro("The input domain is not planar: it must lie in the plane z = 0 but point "
                     "id(s) "
-        << FormatIds(offPlane) << " have z != 0 (first z: " << z[meshId[offPlane.front()]]
-        << ").");
+        << FormatIds(offPlane) << " have z != 0 (first z: " << z[meshId[offPlane.front()]] << ").");
       return 0;
     }
   }
@@ -259,15 +255,14 @@ int vtkAdaptiveDensitySampler::RequestData(
     requested != vtkDataObject::FIELD_ASSOCIATION_POINTS_THEN_CELLS)
   {
     vtkErrorMacro("The density array must be a point or a cell array (field association "
-      << vtkDataObject::FIELD_ASSOCIATION_POINTS << " or "
-      << vtkDataObject::FIELD_ASSOCIATION_CELLS << "); the selected association is "
-      << requested << ".");
+      << vtkDataObject::FIELD_ASSOCIATION_POINTS << " or " << vtkDataObject::FIELD_ASSOCIATION_CELLS
+      << "); the selected association is " << requested << ".");
     return 0;
   }
   int association = requested;
-  vtkAbstractArray* densityAbstract =
-    this->GetInputAbstractArrayToProcess(0, input, association);
-  const std::string quotedName = "'" + (arrayName.empty() ? std::string("(unnamed)") : arrayName) + "'";
+  vtkAbstractArray* densityAbstract = this->GetInputAbstractArrayToProcess(0, input, association);
+  const std::string quotedName =
+    "'" + (arrayName.empty() ? std::string("(unnamed)") : arrayName) + "'";
   if (!densityAbstract)
   {
     const char* kind = requested == vtkDataObject::FIELD_ASSOCIATION_POINTS ? "point array"
@@ -354,23 +349,22 @@ int vtkAdaptiveDensitySampler::RequestData(
     if (!nan.empty())
     {
       vtkErrorMacro("The density " << kind << " " << quotedName
-                                   << " must be finite and >= 0, but it is NaN at " << idWord
-                                   << " " << FormatIds(nan) << ".");
+                                   << " must be finite and >= 0, but it is NaN at " << idWord << " "
+                                   << FormatIds(nan) << ".");
       return 0;
     }
     if (!infinite.empty())
     {
       vtkErrorMacro("The density " << kind << " " << quotedName
-                                   << " must be finite and >= 0, but it is infinite at "
-                                   << idWord << " " << FormatIds(infinite) << ".");
+                                   << " must be finite and >= 0, but it is infinite at " << idWord
+                                   << " " << FormatIds(infinite) << ".");
       return 0;
     }
     if (!negative.empty())
     {
-      vtkErrorMacro("The density " << kind << " " << quotedName
-                                   << " must be finite and >= 0, but it is negative at "
-                                   << idWord << " " << FormatIds(negative)
-                                   << " (first value: " << firstNegative << ").");
+      vtkErrorMacro("The density "
+        << kind << " " << quotedName << " must be finite and >= 0, but it is negative at " << idWord
+        << " " << FormatIds(negative) << " (first value: " << firstNegative << ").");
       return 0;
     }
     if (!positive)
@@ -386,8 +380,8 @@ int vtkAdaptiveDensitySampler::RequestData(
   std::unique_ptr<otparam::DensityField> density;
   try
   {
-    density = otparam::DensityField::create(
-      points, triangles, densityPerPoint, densityPerTriangle, error);
+    density =
+      otparam::DensityField::create(points, triangles, densityPerPoint, densityPerTriangle, error);
   }
   catch (const std::exception& e)
   {
@@ -410,7 +404,8 @@ int vtkAdaptiveDensitySampler::RequestData(
   options.numberOfSamples = static_cast<long long>(this->NumberOfSamples);
   options.maximumNumberOfSamples = static_cast<long long>(this->MaximumNumberOfSamples);
   options.minimumAngleDegrees = this->MinimumAngle;
-  options.progress = [this](double fraction) {
+  options.progress = [this](double fraction)
+  {
     this->UpdateProgress(0.95 * std::min(1.0, std::max(0.0, fraction)));
     return !this->GetAbortExecute();
   };
@@ -481,8 +476,8 @@ int vtkAdaptiveDensitySampler::RequestData(
     vtkWarningMacro(<< (numberOfPoints - used)
                     << " input point(s) belong to no triangle and are ignored.");
   }
-  const auto zeroMass = std::count_if(
-    result.mass.begin(), result.mass.end(), [](double m) { return !(m > 0.0); });
+  const auto zeroMass =
+    std::count_if(result.mass.begin(), result.mass.end(), [](double m) { return !(m > 0.0); });
   if (zeroMass > 0)
   {
     vtkWarningMacro(<< zeroMass << " of the " << n
@@ -498,8 +493,8 @@ int vtkAdaptiveDensitySampler::RequestData(
   }
   if (!result.warning.empty())
   {
-    vtkWarningMacro("NumberOfSamples = " << this->NumberOfSamples << " not met: "
-                                         << result.warning << ".");
+    vtkWarningMacro(
+      "NumberOfSamples = " << this->NumberOfSamples << " not met: " << result.warning << ".");
   }
   this->UpdateProgress(1.0);
   return 1;

@@ -96,8 +96,8 @@ public:
 };
 
 // Equal-width histogram of `values` over their range.
-void AddHistogram(vtkTable* table, const std::string& name, const std::vector<double>& values,
-  int bins)
+void AddHistogram(
+  vtkTable* table, const std::string& name, const std::vector<double>& values, int bins)
 {
   double low = std::numeric_limits<double>::infinity(), high = -low;
   for (double v : values)
@@ -268,14 +268,14 @@ int vtkAreaPreservingParam::RequestData(
   }
   if (this->MaximumCorrectionSweeps < 0)
   {
-    vtkErrorMacro("MaximumCorrectionSweeps must be at least 0; got "
-      << this->MaximumCorrectionSweeps << ".");
+    vtkErrorMacro(
+      "MaximumCorrectionSweeps must be at least 0; got " << this->MaximumCorrectionSweeps << ".");
     return 0;
   }
   if (this->NumberOfHistogramBins < 1 || this->NumberOfHistogramBins > 100000)
   {
-    vtkErrorMacro("NumberOfHistogramBins must be in [1, 100000]; got "
-      << this->NumberOfHistogramBins << ".");
+    vtkErrorMacro(
+      "NumberOfHistogramBins must be in [1, 100000]; got " << this->NumberOfHistogramBins << ".");
     return 0;
   }
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0], 0);
@@ -305,8 +305,7 @@ int vtkAreaPreservingParam::RequestData(
   {
     sampler->SetInputConnection(conformalMap->GetOutputPort());
     // The exact per-triangle area ratio: masses are then exact surface areas.
-    sampler->SetInputArrayToProcess(
-      0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_CELLS, "AreaDensity");
+    sampler->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_CELLS, "AreaDensity");
     sampler->SetNumberOfSamples(this->NumberOfSamples);
     sampler->SetSamplingMode(this->SamplingMode);
     sampled = this->RunStage(sampler, "sampling", 0.15, 0.4);
@@ -352,7 +351,7 @@ int vtkAreaPreservingParam::RequestData(
   if (!transported)
   {
     vtkErrorMacro(<< (this->StageError.empty() ? std::string("a stage produced no output")
-                                                : this->StageError));
+                                               : this->StageError));
     return 0;
   }
 
@@ -449,7 +448,8 @@ int vtkAreaPreservingParam::RequestData(
     options.maximumCorrectionSweeps = this->MaximumCorrectionSweeps;
     options.correctionRelativeDecrease = 0.01;
     this->SetProgressText("composition");
-    options.progress = [this](double fraction) {
+    options.progress = [this](double fraction)
+    {
       this->UpdateProgress(0.8 + 0.19 * fraction);
       return !this->GetAbortExecute();
     };
@@ -557,13 +557,14 @@ int vtkAreaPreservingParam::RequestData(
   fd->AddArray(MakeScalar("MeanAngleDistortion", figures.meanAngleDistortionDegrees));
   fd->AddArray(MakeScalar("MaximumAngleDistortion", figures.maximumAngleDistortionDegrees));
   fd->AddArray(MakeScalar("MeanQuasiConformalDilatation", figures.meanDilatation));
-  for (const char* name : { "MeanAbsLogAreaRatio", "MaximumAbsLogAreaRatio",
-         "MeanAngleDistortion", "MaximumAngleDistortion", "MeanQuasiConformalDilatation" })
+  for (const char* name : { "MeanAbsLogAreaRatio", "MaximumAbsLogAreaRatio", "MeanAngleDistortion",
+         "MaximumAngleDistortion", "MeanQuasiConformalDilatation" })
   {
-    fd->AddArray(MakeScalar(("Conformal" + std::string(name)).c_str(), FieldScalar(conformal, name)));
+    fd->AddArray(
+      MakeScalar(("Conformal" + std::string(name)).c_str(), FieldScalar(conformal, name)));
   }
-  fd->AddArray(MakeScalar("InterpolatedMeanAbsLogAreaRatio",
-    composed.meanAbsLogAreaRatioInterpolated));
+  fd->AddArray(
+    MakeScalar("InterpolatedMeanAbsLogAreaRatio", composed.meanAbsLogAreaRatioInterpolated));
   fd->AddArray(MakeIntScalar(
     "InterpolatedFlippedTriangles", static_cast<int>(composed.flippedAfterInterpolation)));
   fd->AddArray(MakeIntScalar("UntangledVertices", static_cast<int>(composed.untangledVertices)));

@@ -145,7 +145,8 @@ int vtkConformalDiskMap::RequestData(
     meshId[compacted.originalPointIds[v]] = static_cast<int>(v);
   }
   otparam::ConformalDiskMapOptions options;
-  auto toMeshId = [&](vtkIdType id, const char* property, int& out) {
+  auto toMeshId = [&](vtkIdType id, const char* property, int& out)
+  {
     if (id == -1)
     {
       out = -1;
@@ -191,7 +192,8 @@ int vtkConformalDiskMap::RequestData(
   }
   options.tolerance = this->Tolerance;
   options.maximumIterations = this->MaximumNumberOfIterations;
-  options.progress = [this](double fraction) {
+  options.progress = [this](double fraction)
+  {
     this->UpdateProgress(0.95 * fraction);
     return !this->GetAbortExecute();
   };
@@ -290,7 +292,8 @@ int vtkConformalDiskMap::RequestData(
   fd->AddArray(
     MakeIntScalar("FoldedWithMeshLaplacian", static_cast<int>(map.foldedWithMeshLaplacian)));
   fd->AddArray(MakeIntScalar("IntrinsicLaplacian", map.intrinsicLaplacian ? 1 : 0));
-  auto idScalar = [](const char* name, vtkIdType value) {
+  auto idScalar = [](const char* name, vtkIdType value)
+  {
     vtkNew<vtkIdTypeArray> array;
     array->SetName(name);
     array->InsertNextValue(value);

@@ -21,8 +21,8 @@
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkStringArray.h"
 
-#include "OTParamAdapterUtilities.h"
 #include "Discontinuities.h"
+#include "OTParamAdapterUtilities.h"
 #include "SemiDiscreteOT.h"
 #include "SourceMeasure.h"
 
@@ -132,8 +132,8 @@ int vtkSemiDiscreteOTSolver::RequestData(
   }
   if (!(this->MaximumArcAngle > 0.0) || !(this->MaximumArcAngle <= 1.0))
   {
-    vtkErrorMacro("MaximumArcAngle must be in (0, 1] radians; got " << this->MaximumArcAngle
-                                                                     << ".");
+    vtkErrorMacro(
+      "MaximumArcAngle must be in (0, 1] radians; got " << this->MaximumArcAngle << ".");
     return 0;
   }
 
@@ -331,7 +331,8 @@ int vtkSemiDiscreteOTSolver::RequestData(
   // larger of that and the fraction of orders of magnitude of the error already gained.
   double firstError = -1.0;
   double progress = 0.0;
-  options.progress = [this, &firstError, &progress](int iteration, double error) {
+  options.progress = [this, &firstError, &progress](int iteration, double error)
+  {
     if (firstError < 0.0)
     {
       firstError = error;
@@ -339,8 +340,8 @@ int vtkSemiDiscreteOTSolver::RequestData(
     double fraction = static_cast<double>(iteration) / this->MaximumNumberOfIterations;
     if (firstError > this->Tolerance && error > 0.0)
     {
-      fraction = std::max(
-        fraction, std::log(firstError / error) / std::log(firstError / this->Tolerance));
+      fraction =
+        std::max(fraction, std::log(firstError / error) / std::log(firstError / this->Tolerance));
     }
     progress = std::max(progress, std::min(0.95, fraction));
     std::ostringstream text;
@@ -358,13 +359,14 @@ int vtkSemiDiscreteOTSolver::RequestData(
     result = otparam::solveSemiDiscreteOT(*source, diracs, masses, options);
     if (result.aborted || this->GetAbortExecute())
     {
-      vtkWarningMacro("Aborted after " << result.iterations << " Newton iterations; the outputs "
-                                                              "are left empty.");
+      vtkWarningMacro("Aborted after " << result.iterations
+                                       << " Newton iterations; the outputs "
+                                          "are left empty.");
       return 1;
     }
     const auto startOutput = std::chrono::steady_clock::now();
-    geometry = otparam::computePowerDiagramGeometry(
-      *source, diracs, result.heights, this->MaximumArcAngle);
+    geometry =
+      otparam::computePowerDiagramGeometry(*source, diracs, result.heights, this->MaximumArcAngle);
     secondsOutput = Seconds(startOutput);
   }
   catch (const std::exception& e)
@@ -381,10 +383,10 @@ int vtkSemiDiscreteOTSolver::RequestData(
   if (!result.converged)
   {
     vtkWarningMacro("Not converged after "
-      << result.iterations << " Newton iterations (MaximumNumberOfIterations = "
-      << this->MaximumNumberOfIterations << "): relative error " << result.relativeError
-      << " > Tolerance " << this->Tolerance << ". " << result.message
-      << " The outputs hold this last iterate, with Converged = 0.");
+      << result.iterations
+      << " Newton iterations (MaximumNumberOfIterations = " << this->MaximumNumberOfIterations
+      << "): relative error " << result.relativeError << " > Tolerance " << this->Tolerance << ". "
+      << result.message << " The outputs hold this last iterate, with Converged = 0.");
   }
 
   const auto startOutput = std::chrono::steady_clock::now();
@@ -542,9 +544,8 @@ int vtkSemiDiscreteOTSolver::RequestData(
         }
       }
     }
-    const auto jumps = support.empty()
-      ? std::vector<otparam::PowerDiagramGeometry::Edge>()
-      : otparam::discontinuityEdges(geometry, diracs, support);
+    const auto jumps = support.empty() ? std::vector<otparam::PowerDiagramGeometry::Edge>()
+                                       : otparam::discontinuityEdges(geometry, diracs, support);
     vtkPolyData* out = outputs[4];
     vtkNew<vtkPoints> points;
     points->SetDataTypeToDouble();

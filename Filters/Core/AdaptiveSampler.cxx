@@ -65,8 +65,8 @@ Vec2 toVec(const Point& p)
 // boundary edges forever; it is left alone, and left out of the output.
 bool isSliver(const Point& p, const Point& q, const Point& r)
 {
-  const double longest = std::max({ CGAL::squared_distance(p, q), CGAL::squared_distance(q, r),
-    CGAL::squared_distance(r, p) });
+  const double longest = std::max(
+    { CGAL::squared_distance(p, q), CGAL::squared_distance(q, r), CGAL::squared_distance(r, p) });
   const double twiceArea =
     std::abs((q.x() - p.x()) * (r.y() - p.y()) - (q.y() - p.y()) * (r.x() - p.x()));
   return twiceArea <= 1e-10 * longest;
@@ -87,14 +87,16 @@ public:
 
   // Returns false when aborted. With `seeds`, refines their triangulation (the first run
   // starts from boundary samples only).
-  bool run(const std::function<bool(long long)>& keepGoing, const std::vector<Vec2>* seeds = nullptr)
+  bool run(
+    const std::function<bool(long long)>& keepGoing, const std::vector<Vec2>* seeds = nullptr)
   {
     if (seeds)
     {
       std::vector<std::pair<Point, double>> points;
       for (const Vec2& p : *seeds)
       {
-        points.emplace_back(Point(p.x, p.y), Graded && std::isfinite(Epsilon) ? Field.value(p) : 1.0);
+        points.emplace_back(
+          Point(p.x, p.y), Graded && std::isfinite(Epsilon) ? Field.value(p) : 1.0);
       }
       Triangulation.insert(points.begin(), points.end());
     }
@@ -181,8 +183,10 @@ private:
       for (int s = 0; s < count; ++s)
       {
         const double target = cumulative.back() * s / count;
-        const int k = static_cast<int>(
-          std::upper_bound(cumulative.begin(), cumulative.end(), target) - cumulative.begin()) - 1;
+        const int k =
+          static_cast<int>(
+            std::upper_bound(cumulative.begin(), cumulative.end(), target) - cumulative.begin()) -
+          1;
         const double within = (target - cumulative[k]) / (cumulative[k + 1] - cumulative[k]);
         angles.push_back(2.0 * Pi * (k + within) / fine);
       }
@@ -230,8 +234,7 @@ private:
   // Pushes the face when it is too large or too thin.
   void consider(FaceHandle f)
   {
-    const Point &p = f->vertex(0)->point(), &q = f->vertex(1)->point(),
-                &r = f->vertex(2)->point();
+    const Point &p = f->vertex(0)->point(), &q = f->vertex(1)->point(), &r = f->vertex(2)->point();
     const Point c = CGAL::circumcenter(p, q, r);
     const double radius = std::sqrt(CGAL::squared_distance(c, p));
     double g = std::max({ f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info() });
@@ -256,8 +259,8 @@ private:
 
   void refine(FaceHandle f)
   {
-    const Point c = CGAL::circumcenter(
-      f->vertex(0)->point(), f->vertex(1)->point(), f->vertex(2)->point());
+    const Point c =
+      CGAL::circumcenter(f->vertex(0)->point(), f->vertex(1)->point(), f->vertex(2)->point());
     // A boundary edge that c encroaches: the hull edge crossed to reach c, or a hull edge of
     // the face containing c whose diametral lens contains c.
     DT::Locate_type type;
@@ -373,7 +376,8 @@ std::unordered_set<const void*> boundaryToDrop(const DT& dt, const DensityField&
 {
   std::unordered_set<const void*> drop;
   const auto hull = hullVertices(dt);
-  auto isCorner = [&](VertexHandle v) {
+  auto isCorner = [&](VertexHandle v)
+  {
     if (field.isUnitDisk())
     {
       return false;
@@ -456,8 +460,8 @@ void steerOffsets(const DensityField& field, double power, double equalizedPower
   {
     if (equalized[i] > 0.0)
     {
-      const double change = std::clamp(
-        mean / equalized[i] - 1.0, -LargestSteeredMassChange, LargestSteeredMassChange);
+      const double change =
+        std::clamp(mean / equalized[i] - 1.0, -LargestSteeredMassChange, LargestSteeredMassChange);
       offset[i] += change * area[i] / CellAreaPerOffset;
     }
   }
@@ -505,7 +509,6 @@ bool relax(const DensityField& field, const SamplerOptions& options, std::vector
   }
   return true;
 }
-
 
 struct Candidate
 {
@@ -754,8 +757,8 @@ bool refineSupport(CDT& cdt, const DensityField& field, const SamplerOptions& op
   double epsilon, bool& capped, const std::function<bool(long long)>& keepGoing)
 {
   markDomain(cdt);
-  GradedCriteria::Grading grading{ &field, options.mode == SamplingMode::Adaptive,
-    options.sizeRule, epsilon };
+  GradedCriteria::Grading grading{ &field, options.mode == SamplingMode::Adaptive, options.sizeRule,
+    epsilon };
   Mesher mesher(cdt, GradedCriteria(std::sin(options.minimumAngleDegrees * Pi / 180.0), grading));
   mesher.init(true);
   long long steps = 0;
@@ -826,7 +829,8 @@ std::vector<char> loopCorners(const std::vector<Vec2>& loop)
   for (size_t k = 0; k < n; ++k)
   {
     const Vec2 u = loop[k] - loop[(k + n - 1) % n], w = loop[(k + 1) % n] - loop[k];
-    corner[k] = dot(u, w) < 0.0 || std::abs(cross(u, w)) > std::sin(10.0 * Pi / 180.0) * norm(u) * norm(w);
+    corner[k] =
+      dot(u, w) < 0.0 || std::abs(cross(u, w)) > std::sin(10.0 * Pi / 180.0) * norm(u) * norm(w);
   }
   return corner;
 }
@@ -937,12 +941,13 @@ Candidate finishSupportCandidate(const DensityField& field, const SamplerOptions
 // The whole sampling of a non-convex domain: boundary samples along every loop spaced by
 // nu-length eps, graded refinement with eps calibrated to the target count, every other
 // boundary sample dropped, Lloyd steps, masses. Fills result like sampleDensity does.
-void sampleSupport(const DensityField& field, const SamplerOptions& options, double integral,
-  SamplerResult& result)
+void sampleSupport(
+  const DensityField& field, const SamplerOptions& options, double integral, SamplerResult& result)
 {
   const double target = static_cast<double>(options.numberOfSamples);
   const bool graded = options.mode == SamplingMode::Adaptive;
-  auto grading = [&](Vec2 x) {
+  auto grading = [&](Vec2 x)
+  {
     if (!graded)
     {
       return 1.0;
@@ -995,8 +1000,10 @@ void sampleSupport(const DensityField& field, const SamplerOptions& options, dou
         for (int q = 0; q < count; ++q)
         {
           const double at = cumulative.back() * q / count;
-          const size_t j = static_cast<size_t>(
-            std::upper_bound(cumulative.begin(), cumulative.end(), at) - cumulative.begin()) - 1;
+          const size_t j =
+            static_cast<size_t>(
+              std::upper_bound(cumulative.begin(), cumulative.end(), at) - cumulative.begin()) -
+            1;
           const double step = cumulative[j + 1] - cumulative[j];
           const double within = step > 0.0 ? (at - cumulative[j]) / step : 0.0;
           samples.push_back(q == 0 ? path[0] : path[j] + within * (path[j + 1] - path[j]));
@@ -1009,7 +1016,8 @@ void sampleSupport(const DensityField& field, const SamplerOptions& options, dou
     ++result.refinementRuns;
     const double share = runTarget / (target * 2.2);
     const bool finished = refineSupport(*cdt, field, options, epsilon, result.capped,
-      [&](long long count) {
+      [&](long long count)
+      {
         return !options.progress ||
           options.progress(std::min(0.9, done + 0.9 * share * count / runTarget));
       });
@@ -1118,10 +1126,13 @@ void sampleSupport(const DensityField& field, const SamplerOptions& options, dou
     result.aborted = true;
     return;
   }
-  const std::vector<Vec2> relaxed(all.begin() + static_cast<long>(all.size() - interior.size()), all.end());
+  const std::vector<Vec2> relaxed(
+    all.begin() + static_cast<long>(all.size() - interior.size()), all.end());
   adoptCandidate(result,
     finishSupportCandidate(field, options, *source, loops, relaxed, result.sourceMass), graded,
-    [&] { return finishSupportCandidate(field, options, *source, loops, interior, result.sourceMass); });
+    [&] {
+      return finishSupportCandidate(field, options, *source, loops, interior, result.sourceMass);
+    });
 }
 } // namespace
 
@@ -1202,10 +1213,12 @@ SamplerResult sampleDensity(const DensityField& field, const SamplerOptions& opt
         refinement = std::make_unique<Refinement>(field, options, epsilon);
         ++result.refinementRuns;
         const double share = runTarget / (target * 2.2); // rough share of the total work
-        const bool finished = refinement->run([&](long long count) {
-          return !options.progress ||
-            options.progress(std::min(0.9, done + 0.9 * share * count / runTarget));
-        });
+        const bool finished = refinement->run(
+          [&](long long count)
+          {
+            return !options.progress ||
+              options.progress(std::min(0.9, done + 0.9 * share * count / runTarget));
+          });
         done = std::min(0.9, done + 0.9 * share);
         if (!finished)
         {
@@ -1308,4 +1321,3 @@ SamplerResult sampleDensity(const DensityField& field, const SamplerOptions& opt
 }
 
 } // namespace otparam
-

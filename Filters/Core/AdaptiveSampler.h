@@ -28,7 +28,7 @@ struct SamplerOptions
 {
   SamplingMode mode = SamplingMode::Adaptive;
   SizeRule sizeRule = SizeRule::SqrtDensity;
-  long long numberOfSamples = 1000;           // target; the threshold eps follows from it
+  long long numberOfSamples = 1000;            // target; the threshold eps follows from it
   long long maximumNumberOfSamples = 10000000; // hard cap on the refinement
   double minimumAngleDegrees = 30.0;
   // Called with the fraction done; returning false aborts.
@@ -42,14 +42,14 @@ struct SamplerResult
   bool aborted = false;
   bool capped = false; // the refinement stopped at maximumNumberOfSamples
   std::vector<Vec2> samples;
-  std::vector<Triangle> triangles; // Delaunay triangulation of the samples (mesh triangles in
-                                   // MeshVertices mode)
-  std::vector<double> mass;        // density integrated over each sample's Voronoi cell clipped
-                                   // to the domain, normalized to sum to sourceMass
-  double sourceMass = 0.0;         // pi for the unit disk, else the domain's area
-  double epsilon = 0.0;            // the nu-length threshold used (Adaptive/Uniform)
-  int refinementRuns = 0;          // runs needed to reach the target count within 10%
-  bool relaxed = false;            // Lloyd relaxation kept (it made the masses more even)
+  std::vector<Triangle> triangles;  // Delaunay triangulation of the samples (mesh triangles in
+                                    // MeshVertices mode)
+  std::vector<double> mass;         // density integrated over each sample's Voronoi cell clipped
+                                    // to the domain, normalized to sum to sourceMass
+  double sourceMass = 0.0;          // pi for the unit disk, else the domain's area
+  double epsilon = 0.0;             // the nu-length threshold used (Adaptive/Uniform)
+  int refinementRuns = 0;           // runs needed to reach the target count within 10%
+  bool relaxed = false;             // Lloyd relaxation kept (it made the masses more even)
   double minimumAngleDegrees = 0.0; // smallest angle of `triangles`
   double massCoefficientOfVariation = 0.0;
   double secondsRefinement = 0.0;

@@ -115,8 +115,8 @@ double meanAbsLogAreaRatio(const std::vector<Triangle>& triangles, const std::ve
   return mean;
 }
 
-std::vector<int> flippedTriangles(const std::vector<Triangle>& triangles,
-  const std::vector<Vec2>& uv)
+std::vector<int> flippedTriangles(
+  const std::vector<Triangle>& triangles, const std::vector<Vec2>& uv)
 {
   std::vector<int> flipped;
   for (size_t t = 0; t < triangles.size(); ++t)
@@ -208,9 +208,9 @@ private:
       const double along = std::clamp(dot(onChord - a, ab) / dot(ab, ab), 0.0, 1.0);
       const Vec2 imageOnChord = (1.0 - along) * imageA + along * imageB;
       const double chordRadius = norm(onChord), imageChordRadius = norm(imageOnChord);
-      const double blend =
-        chordRadius < 1.0 ? std::clamp((norm(p) - chordRadius) / (1.0 - chordRadius), 0.0, 1.0)
-                          : 1.0;
+      const double blend = chordRadius < 1.0
+        ? std::clamp((norm(p) - chordRadius) / (1.0 - chordRadius), 0.0, 1.0)
+        : 1.0;
       const double radius = imageChordRadius + blend * (1.0 - imageChordRadius);
       return radius * normalized(imageOnChord);
     }
@@ -231,8 +231,8 @@ private:
 class Untangler
 {
 public:
-  Untangler(const SurfaceMesh& surface, const std::vector<int>& boundaryLoop,
-    const VertexStars& stars)
+  Untangler(
+    const SurfaceMesh& surface, const std::vector<int>& boundaryLoop, const VertexStars& stars)
     : Surface(surface)
     , Stars(stars)
     , Previous(surface.points.size(), -1)
@@ -504,8 +504,8 @@ public:
         if (this->Active[v])
         {
           moved[v] = this->OnBoundary[v] == Sliding ? this->moveOnCircle(v, uv)
-            : this->OnBoundary[v] == Pinned       ? this->Polishing && this->moveOnCircle(v, uv)
-                                                  : this->moveInPlane(v, uv);
+            : this->OnBoundary[v] == Pinned         ? this->Polishing && this->moveOnCircle(v, uv)
+                                                    : this->moveInPlane(v, uv);
         }
       }
     }
@@ -628,9 +628,10 @@ private:
       return false;
     }
     const double step = -first / second;
-    return this->acceptDecrease(v, uv, energy, [&](double lambda) {
-      return Vec2{ std::cos(angle + lambda * step), std::sin(angle + lambda * step) };
-    });
+    return this->acceptDecrease(v, uv, energy,
+      [&](double lambda) {
+        return Vec2{ std::cos(angle + lambda * step), std::sin(angle + lambda * step) };
+      });
   }
 
   template <typename Trial>
@@ -721,7 +722,8 @@ CompositionResult composeWithInverseTransport(const SurfaceMesh& surface,
       " images)";
     return result;
   }
-  auto report = [&](double fraction) {
+  auto report = [&](double fraction)
+  {
     if (options.progress && !options.progress(fraction))
     {
       result.aborted = true;
@@ -783,7 +785,8 @@ CompositionResult composeWithInverseTransport(const SurfaceMesh& surface,
       }
       const double mean = meanAbsLogAreaRatio(surface.triangles, result.uv, surfaceFraction);
       const bool settled = moved == 0 ||
-        result.meanAbsLogAreaRatio - mean < SweepsPerCheck * options.correctionRelativeDecrease * mean;
+        result.meanAbsLogAreaRatio - mean <
+          SweepsPerCheck * options.correctionRelativeDecrease * mean;
       result.meanAbsLogAreaRatio = mean;
       if (settled ||
         !report(0.3 + 0.6 * (sweep + 1.0) / std::max(1, options.maximumCorrectionSweeps)))

@@ -50,8 +50,8 @@ struct CompositionResult
 {
   std::string error; // empty on success
   bool aborted = false;
-  std::vector<Vec2> uv;             // final disk coordinates per mesh point
-  std::vector<Vec2> interpolatedUv; // after step 1 only
+  std::vector<Vec2> uv;                       // final disk coordinates per mesh point
+  std::vector<Vec2> interpolatedUv;           // after step 1 only
   std::int64_t outsideSampleHull = 0;         // mesh points mapped through a circular segment
   std::int64_t flippedAfterInterpolation = 0; // triangles with signed area <= 0 after step 1
   std::int64_t untangledVertices = 0;         // vertices moved by step 2

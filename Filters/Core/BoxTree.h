@@ -1,9 +1,10 @@
 // A bounding-box hierarchy over planar items (triangles or points), each with a value, for the
 // density queries of DensityField and the triangulated source measure: the item containing a
-// point, the items meeting a box, and the largest value over a region. Written by hand because CGAL 5.5's AABB tree is 3D only and a uniform grid degrades
-// on conformal images, whose triangles shrink by 1e10 and more towards a finger tip (thousands
-// of triangles per grid bucket). Each node keeps the largest value below it, so a maximum
-// query skips every subtree that cannot raise the current best.
+// point, the items meeting a box, and the largest value over a region. Written by hand because
+// CGAL 5.5's AABB tree is 3D only and a uniform grid degrades on conformal images, whose triangles
+// shrink by 1e10 and more towards a finger tip (thousands of triangles per grid bucket). Each node
+// keeps the largest value below it, so a maximum query skips every subtree that cannot raise the
+// current best.
 #ifndef OTPARAM_BOXTREE_H
 #define OTPARAM_BOXTREE_H
 
@@ -74,7 +75,7 @@ private:
   {
     Vec2 lo, hi;
     double maximum;
-    int begin, end;          // range of Order
+    int begin, end; // range of Order
     int left = -1, right = -1;
   };
 
@@ -99,7 +100,8 @@ private:
     {
       // Median split of the box centres along the longer side.
       const bool alongX = node.hi.x - node.lo.x >= node.hi.y - node.lo.y;
-      auto centre = [&](int id) {
+      auto centre = [&](int id)
+      {
         const Item& item = this->Items[id];
         return alongX ? item.lo.x + item.hi.x : item.lo.y + item.hi.y;
       };

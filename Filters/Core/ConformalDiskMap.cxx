@@ -223,8 +223,9 @@ public:
       lengths.push_back({ edgeLength(mesh, tri[1], tri[2]), edgeLength(mesh, tri[2], tri[0]),
         edgeLength(mesh, tri[0], tri[1]) });
     }
-    const IntrinsicTriangulation intrinsic =
-      intrinsicLaplacian ? intrinsicDelaunay(kept, lengths) : IntrinsicTriangulation{ kept, lengths, 0 };
+    const IntrinsicTriangulation intrinsic = intrinsicLaplacian
+      ? intrinsicDelaunay(kept, lengths)
+      : IntrinsicTriangulation{ kept, lengths, 0 };
     IntrinsicFlips = intrinsic.flips;
     std::vector<Eigen::Triplet<double>> entries;
     entries.reserve(12 * intrinsic.triangles.size());
@@ -543,8 +544,7 @@ ConformalDiskMapResult computeWithLaplacian(const SurfaceMesh& mesh,
   }
   else if (options.alignVertex >= nv || options.alignVertex < -1)
   {
-    msg << "the align vertex " << options.alignVertex << " is not a point id in [0, " << nv
-        << ")";
+    msg << "the align vertex " << options.alignVertex << " is not a point id in [0, " << nv << ")";
   }
   else if (options.alignVertex >= 0 && !onBoundary[options.alignVertex])
   {
@@ -560,7 +560,8 @@ ConformalDiskMapResult computeWithLaplacian(const SurfaceMesh& mesh,
   {
     return result;
   }
-  auto keepGoing = [&](double fraction) {
+  auto keepGoing = [&](double fraction)
+  {
     result.aborted = options.progress && !options.progress(fraction);
     return !result.aborted;
   };
@@ -698,8 +699,7 @@ ConformalDiskMapResult computeWithLaplacian(const SurfaceMesh& mesh,
   // Exact final rotation and centring: the remaining centre offset is below 1e-9, so the
   // Moebius map applied to the points themselves changes the triangles negligibly.
   const std::complex<double> a(X(center, 0), X(center, 1));
-  const double alignAngle =
-    std::arg(moebius(std::polar(1.0, angle[result.alignVertex]), a));
+  const double alignAngle = std::arg(moebius(std::polar(1.0, angle[result.alignVertex]), a));
   const std::complex<double> rotation = std::polar(1.0, -alignAngle);
   result.uv.assign(nv, Vec2());
   for (int v = 0; v < nv; ++v)
@@ -752,8 +752,9 @@ ConformalDiskMapResult computeConformalDiskMap(const SurfaceMesh& mesh,
     again.progress = [&options](double) { return options.progress(1.0); };
   }
   ConformalDiskMapResult intrinsic = computeWithLaplacian(mesh, boundaryLoop, again, true);
-  if (intrinsic.aborted || (intrinsic.error.empty() &&
-        foldedTriangles(mesh, intrinsic.uv) < result.foldedWithMeshLaplacian))
+  if (intrinsic.aborted ||
+    (intrinsic.error.empty() &&
+      foldedTriangles(mesh, intrinsic.uv) < result.foldedWithMeshLaplacian))
   {
     intrinsic.intrinsicLaplacian = true;
     intrinsic.foldedWithMeshLaplacian = result.foldedWithMeshLaplacian;

@@ -15,7 +15,7 @@ struct ConformalDiskMapOptions
   // Interior vertex sent to the origin; -1: the interior vertex nearest to the centre of mass of
   // the surface area once that centre of mass is moved to the origin by a Moebius map.
   int centerVertex = -1;
-  int alignVertex = -1;  // boundary vertex sent to (1, 0); -1: the boundary vertex of lowest id
+  int alignVertex = -1; // boundary vertex sent to (1, 0); -1: the boundary vertex of lowest id
   // Stop when no boundary angle moves by more than this (radians) in one iteration.
   double tolerance = 1e-6;
   int maximumIterations = 100;
@@ -30,9 +30,9 @@ struct ConformalDiskMapResult
   std::vector<Vec2> uv; // per mesh point; boundary points on the unit circle
   int centerVertex = -1;
   int alignVertex = -1;
-  int iterations = 0;            // boundary-angle iterations after the first flattening
-  double lastAngleUpdate = 0.0;  // radians
-  double conformalEnergy = 0.0;  // Dirichlet energy minus image area (0 = conformal)
+  int iterations = 0;           // boundary-angle iterations after the first flattening
+  double lastAngleUpdate = 0.0; // radians
+  double conformalEnergy = 0.0; // Dirichlet energy minus image area (0 = conformal)
   int clippedEars = 0;
   // Triangles the mesh's own cotangent Laplacian folded; when > 0 the map was computed again
   // with the intrinsic Delaunay Laplacian, kept if it folds fewer (intrinsicLaplacian = true).

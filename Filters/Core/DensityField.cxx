@@ -2,8 +2,8 @@
 
 #include "IdList.h"
 
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Convex_hull_traits_adapter_2.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/convex_hull_2.h>
 #include <CGAL/property_map.h>
 
@@ -182,8 +182,8 @@ std::unique_ptr<DensityField> DensityField::create(const std::vector<Vec2>& poin
       if (directed[e].first == directed[e - 1].first)
       {
         msg << "triangles " << directed[e - 1].second << " and " << directed[e].second
-            << " overlap (both have the edge from point " << directed[e].first.first
-            << " to point " << directed[e].first.second << " on the same side)";
+            << " overlap (both have the edge from point " << directed[e].first.first << " to point "
+            << directed[e].first.second << " on the same side)";
         error = msg.str();
         return nullptr;
       }
@@ -196,8 +196,8 @@ std::unique_ptr<DensityField> DensityField::create(const std::vector<Vec2>& poin
   }
 
   using K = CGAL::Exact_predicates_inexact_constructions_kernel;
-  using Traits = CGAL::Convex_hull_traits_adapter_2<K,
-    CGAL::Pointer_property_map<K::Point_2>::type>;
+  using Traits =
+    CGAL::Convex_hull_traits_adapter_2<K, CGAL::Pointer_property_map<K::Point_2>::type>;
   std::vector<K::Point_2> cgalPoints;
   std::vector<std::size_t> usedIds, hull;
   for (size_t i = 0; i < points.size(); ++i)
@@ -273,15 +273,17 @@ int DensityField::locate(Vec2 x) const
   for (double slack : { 1e-12, 1e-9 })
   {
     int found = -1;
-    TriangleTree.findContaining(x, [&](int t) {
-      const Triangle& tri = Triangles[t];
-      if (inside(x, Points[tri[0]], Points[tri[1]], Points[tri[2]], slack))
+    TriangleTree.findContaining(x,
+      [&](int t)
       {
-        found = t;
-        return true;
-      }
-      return false;
-    });
+        const Triangle& tri = Triangles[t];
+        if (inside(x, Points[tri[0]], Points[tri[1]], Points[tri[2]], slack))
+        {
+          found = t;
+          return true;
+        }
+        return false;
+      });
     if (found >= 0)
     {
       return found;
@@ -343,9 +345,10 @@ bool DensityField::traceBoundaryLoops(std::string& error)
     Loops.push_back(std::move(loop));
   }
   // A fixed order (the map's is not): the loop with the lowest first point first.
-  std::sort(Loops.begin(), Loops.end(), [](const std::vector<Vec2>& a, const std::vector<Vec2>& b) {
-    return a.front().x < b.front().x || (a.front().x == b.front().x && a.front().y < b.front().y);
-  });
+  std::sort(Loops.begin(), Loops.end(),
+    [](const std::vector<Vec2>& a, const std::vector<Vec2>& b) {
+      return a.front().x < b.front().x || (a.front().x == b.front().x && a.front().y < b.front().y);
+    });
   return true;
 }
 
@@ -394,8 +397,7 @@ double DensityField::value(Vec2 x) const
   }
   const Triangle& tri = Triangles[t];
   const auto l = barycentric(x, Points[tri[0]], Points[tri[1]], Points[tri[2]]);
-  return std::max(
-    0.0, l[0] * PerPoint[tri[0]] + l[1] * PerPoint[tri[1]] + l[2] * PerPoint[tri[2]]);
+  return std::max(0.0, l[0] * PerPoint[tri[0]] + l[1] * PerPoint[tri[1]] + l[2] * PerPoint[tri[2]]);
 }
 
 double DensityField::maxInsideTriangle(Vec2 a, Vec2 b, Vec2 c) const
@@ -409,22 +411,26 @@ double DensityField::maxInsideTriangle(Vec2 a, Vec2 b, Vec2 c) const
   const Vec2 hi = { std::max({ a.x, b.x, c.x }), std::max({ a.y, b.y, c.y }) };
   if (PerTriangle.empty())
   {
-    PointTree.maximize(lo, hi, largest, [&](int item, double& best) {
-      if (inside(Points[PointTreeIds[item]], a, b, c, 0.0))
+    PointTree.maximize(lo, hi, largest,
+      [&](int item, double& best)
       {
-        best = PerPoint[PointTreeIds[item]];
-      }
-    });
+        if (inside(Points[PointTreeIds[item]], a, b, c, 0.0))
+        {
+          best = PerPoint[PointTreeIds[item]];
+        }
+      });
   }
   else
   {
-    TriangleTree.maximize(lo, hi, largest, [&](int t, double& best) {
-      const Triangle& tri = Triangles[t];
-      if (inside((1.0 / 3.0) * (Points[tri[0]] + Points[tri[1]] + Points[tri[2]]), a, b, c, 0.0))
+    TriangleTree.maximize(lo, hi, largest,
+      [&](int t, double& best)
       {
-        best = PerTriangle[t];
-      }
-    });
+        const Triangle& tri = Triangles[t];
+        if (inside((1.0 / 3.0) * (Points[tri[0]] + Points[tri[1]] + Points[tri[2]]), a, b, c, 0.0))
+        {
+          best = PerTriangle[t];
+        }
+      });
   }
   return largest;
 }
@@ -438,10 +444,12 @@ std::unique_ptr<SourceMeasure> DensityField::makeSource(std::string& error, doub
   std::vector<double> density;
   points.reserve(3 * Triangles.size());
   density.reserve(3 * Triangles.size());
-  auto add = [&](Vec2 a, Vec2 b, Vec2 c, double fa, double fb, double fc) {
+  auto add = [&](Vec2 a, Vec2 b, Vec2 c, double fa, double fb, double fc)
+  {
     const int first = static_cast<int>(points.size());
     points.insert(points.end(), { a, b, c });
-    density.insert(density.end(), { std::pow(fa, power), std::pow(fb, power), std::pow(fc, power) });
+    density.insert(
+      density.end(), { std::pow(fa, power), std::pow(fb, power), std::pow(fc, power) });
     triangles.push_back({ first, first + 1, first + 2 });
   };
   std::vector<double> hullValue(Hull.size());

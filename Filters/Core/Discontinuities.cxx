@@ -70,7 +70,7 @@ int SupportTriangulation::neighbourAcross(int t, int a, int b) const
 bool SupportTriangulation::segmentInside(int i, int j) const
 {
   const Vec2 target = Points[j];
-  int vertex = i; // the walk stands at a vertex...
+  int vertex = i;                // the walk stands at a vertex...
   int face = -1, a = -1, b = -1; // ...or has entered `face` through its edge ab
   const std::size_t limit = 2 * (Triangles.size() + Points.size()) + 8;
   for (std::size_t step = 0; step < limit; ++step)

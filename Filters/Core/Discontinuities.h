@@ -22,7 +22,7 @@ public:
 private:
   int neighbourAcross(int t, int a, int b) const; // the triangle sharing edge ab with t, or -1
   std::vector<Vec2> Points;
-  std::vector<Triangle> Triangles; // counter-clockwise
+  std::vector<Triangle> Triangles;        // counter-clockwise
   std::vector<std::vector<int>> Incident; // triangles around each point
 };
 

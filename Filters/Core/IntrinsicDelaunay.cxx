@@ -9,8 +9,8 @@ namespace otparam
 {
 namespace
 {
-// The area of a triangle from its edge lengths, by Kahan's stable form of Heron's formula (0 for lengths
-// that violate the triangle inequality by rounding).
+// The area of a triangle from its edge lengths, by Kahan's stable form of Heron's formula (0 for
+// lengths that violate the triangle inequality by rounding).
 double areaFromLengths(const std::array<double, 3>& l)
 {
   double x = l[0], y = l[1], z = l[2];
@@ -51,7 +51,8 @@ IntrinsicTriangulation intrinsicDelaunay(
   {
     std::unordered_map<std::uint64_t, std::int64_t> byEnds;
     byEnds.reserve(halfedges);
-    auto key = [](int from, int to) {
+    auto key = [](int from, int to)
+    {
       return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(from)) << 32) |
         static_cast<std::uint32_t>(to);
     };
@@ -72,7 +73,8 @@ IntrinsicTriangulation intrinsicDelaunay(
       }
     }
   }
-  auto link = [&](std::int64_t a, std::int64_t b) {
+  auto link = [&](std::int64_t a, std::int64_t b)
+  {
     twin[a] = b;
     if (b >= 0)
     {
@@ -82,7 +84,8 @@ IntrinsicTriangulation intrinsicDelaunay(
 
   std::vector<std::int64_t> queue;
   std::vector<char> queued(halfedges, 0);
-  auto push = [&](std::int64_t h) {
+  auto push = [&](std::int64_t h)
+  {
     if (h >= 0 && twin[h] >= 0 && !queued[h] && !queued[twin[h]])
     {
       queued[h] = 1;

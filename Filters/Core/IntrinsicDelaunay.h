@@ -20,8 +20,8 @@ namespace otparam
 
 struct IntrinsicTriangulation
 {
-  std::vector<Triangle> triangles;              // counter-clockwise, same vertex ids
-  std::vector<std::array<double, 3>> lengths;   // lengths[t][k]: edge opposite corner k
+  std::vector<Triangle> triangles;            // counter-clockwise, same vertex ids
+  std::vector<std::array<double, 3>> lengths; // lengths[t][k]: edge opposite corner k
   int flips = 0;
 };
 

@@ -4,13 +4,13 @@
 
 #include <CGAL/Convex_hull_traits_adapter_2.h>
 #include <CGAL/Delaunay_triangulation_2.h>
-#include <CGAL/convex_hull_2.h>
-#include <CGAL/property_map.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Regular_triangulation_2.h>
 #include <CGAL/Regular_triangulation_face_base_2.h>
 #include <CGAL/Regular_triangulation_vertex_base_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
+#include <CGAL/convex_hull_2.h>
+#include <CGAL/property_map.h>
 
 #include <algorithm>
 #include <array>
@@ -46,7 +46,8 @@ std::vector<int> rowOrder(const std::vector<Vec2>& points)
   const double height = std::max(hi.y - lo.y, 1e-300) / rows;
   std::vector<int> order(points.size());
   std::iota(order.begin(), order.end(), 0);
-  auto key = [&](int i) {
+  auto key = [&](int i)
+  {
     const long row = std::lround(std::floor((points[i].y - lo.y) / height));
     return std::make_pair(row, (row % 2 ? -1.0 : 1.0) * points[i].x);
   };
@@ -183,7 +184,8 @@ public:
       for (size_t k = 0; k < angles.size(); ++k)
       {
         const double from = angles[k];
-        const double length = k + 1 < angles.size() ? angles[k + 1] - from : angles[0] + 2.0 * Pi - from;
+        const double length =
+          k + 1 < angles.size() ? angles[k + 1] - from : angles[0] + 2.0 * Pi - from;
         const double mid = from + 0.5 * length;
         if (length > 0.0 &&
           circlePointInCell(cell.vertices, Vec2{ std::cos(mid), std::sin(mid) }, unused))
@@ -197,7 +199,8 @@ public:
       std::max<size_t>(1, static_cast<size_t>(std::sqrt(static_cast<double>(Arcs.size()))));
     for (size_t begin = 0; begin < Arcs.size(); begin += blockSize)
     {
-      Block block{ begin, std::min(Arcs.size(), begin + blockSize), Arcs[begin].from, 0.0, INFINITY };
+      Block block{ begin, std::min(Arcs.size(), begin + blockSize), Arcs[begin].from, 0.0,
+        INFINITY };
       for (size_t k = block.begin; k < block.end; ++k)
       {
         block.length = std::max(block.length, Arcs[k].from + Arcs[k].length - block.from);
@@ -240,7 +243,8 @@ public:
     // (2.5e5 coarse, ~1800 arcs): the fine heights took 26 s with a loop over all arcs, 3 s so.
     const double direction = angleOf(y);
     long double best = -INFINITY;
-    auto searchBlock = [&](const Block& block) {
+    auto searchBlock = [&](const Block& block)
+    {
       for (size_t k = block.begin; k < block.end; ++k)
       {
         const Arc& arc = Arcs[k];
@@ -406,7 +410,8 @@ bool coarseToFineHeights(const SourceMeasure& source, const std::vector<Vec2>& d
   // samples of the brain 11 and of the hand 1657 (stalled coarse-to-fine).
   std::sort(edgeLengths.begin(), edgeLengths.end());
   const double medianEdge = edgeLengths[edgeLengths.size() / 2];
-  const double spread = edgeLengths[9 * edgeLengths.size() / 10] / edgeLengths[edgeLengths.size() / 10];
+  const double spread =
+    edgeLengths[9 * edgeLengths.size() / 10] / edgeLengths[edgeLengths.size() / 10];
   if (!(spread <= MaximumSpacingSpread))
   {
     return false;
@@ -456,7 +461,8 @@ bool coarseToFineHeights(const SourceMeasure& source, const std::vector<Vec2>& d
   for (int k = 0; k < 6; ++k)
   {
     const double angle = k * Pi / 3.0;
-    stencil.push_back({ 0.5 * Vec2{ std::cos(angle + Pi / 6.0), std::sin(angle + Pi / 6.0) }, 0.8 });
+    stencil.push_back(
+      { 0.5 * Vec2{ std::cos(angle + Pi / 6.0), std::sin(angle + Pi / 6.0) }, 0.8 });
     stencil.push_back({ Vec2{ std::cos(angle), std::sin(angle) }, 0.4 });
   }
   double totalWeight = 0.0;
@@ -531,7 +537,7 @@ int unhideDiracs(const SourceMeasure& source, const std::vector<Vec2>& diracs,
       }
       const double unitArea =
         bounded ? 0.5 * std::abs(cross(corner[1] - corner[0], corner[2] - corner[0])) : 0.0;
-            // A quarter of its mass: lowered more, Diracs hide their neighbours in turn (with all of
+      // A quarter of its mass: lowered more, Diracs hide their neighbours in turn (with all of
       // it, 30 rounds did not end the cascade at 1e5 Diracs of contrast 1e4).
       const double depth = unitArea > 0.0 ? std::sqrt(0.25 * nu[i] / (density * unitArea)) : 0.0;
       // Never less than a safe margin above the rounding of the heights.
@@ -586,7 +592,8 @@ int pullEmptyCellsIntoDisk(const std::vector<Vec2>& diracs, const std::vector<do
         }
         diagram.cell(j, lo, hi, cell);
         const Vec2 slope = diracs[i] - diracs[j];
-        auto consider = [&](Vec2 x) {
+        auto consider = [&](Vec2 x)
+        {
           const Height value = before[j] + dot(x, slope);
           if (value > best)
           {
@@ -616,8 +623,7 @@ int pullEmptyCellsIntoDisk(const std::vector<Vec2>& diracs, const std::vector<do
       }
       // Lowered by depth below that value, Dirac i owns a small region there, of linear size
       // about depth / |y_i - y_owner|: a tenth of its mass, to leave its neighbours be.
-      const double depth =
-        norm(diracs[i] - diracs[owner]) * std::sqrt(0.1 * nu[i] / Pi);
+      const double depth = norm(diracs[i] - diracs[owner]) * std::sqrt(0.1 * nu[i] / Pi);
       h[i] = best - depth;
       ++changed;
     }

@@ -32,8 +32,7 @@ bool coarseToFineHeights(const SourceMeasure& source, const std::vector<Vec2>& d
 // a lowered Dirac can hide a neighbour). Leaves diagram built at the final heights and returns
 // the number of Diracs still hidden.
 int unhideDiracs(const SourceMeasure& source, const std::vector<Vec2>& diracs,
-  const std::vector<double>& nu, std::vector<Height>& h, PowerDiagram& diagram,
-  int maxRounds = 30);
+  const std::vector<double>& nu, std::vector<Height>& h, PowerDiagram& diagram, int maxRounds = 30);
 
 // Lowers every Dirac whose cell misses the unit disk (cellMass 0, not hidden) to just below
 // the largest value of <x, y_i> - max_j (<x, y_j> - h_j) over the disk, found among the cells of

@@ -15,12 +15,30 @@ struct Vec2
   double y = 0.0;
 };
 
-inline Vec2 operator+(Vec2 a, Vec2 b) { return { a.x + b.x, a.y + b.y }; }
-inline Vec2 operator-(Vec2 a, Vec2 b) { return { a.x - b.x, a.y - b.y }; }
-inline Vec2 operator*(double s, Vec2 a) { return { s * a.x, s * a.y }; }
-inline double dot(Vec2 a, Vec2 b) { return a.x * b.x + a.y * b.y; }
-inline double cross(Vec2 a, Vec2 b) { return a.x * b.y - a.y * b.x; }
-inline double norm(Vec2 a) { return std::hypot(a.x, a.y); }
+inline Vec2 operator+(Vec2 a, Vec2 b)
+{
+  return { a.x + b.x, a.y + b.y };
+}
+inline Vec2 operator-(Vec2 a, Vec2 b)
+{
+  return { a.x - b.x, a.y - b.y };
+}
+inline Vec2 operator*(double s, Vec2 a)
+{
+  return { s * a.x, s * a.y };
+}
+inline double dot(Vec2 a, Vec2 b)
+{
+  return a.x * b.x + a.y * b.y;
+}
+inline double cross(Vec2 a, Vec2 b)
+{
+  return a.x * b.y - a.y * b.x;
+}
+inline double norm(Vec2 a)
+{
+  return std::hypot(a.x, a.y);
+}
 
 using Triangle = std::array<int, 3>;
 

@@ -18,7 +18,8 @@ double signedArea(Vec2 a, Vec2 b, Vec2 c)
 // Unsigned corner angles of a triangle (at vertex 0, 1, 2).
 std::array<double, 3> cornerAngles(Vec2 a, Vec2 b, Vec2 c)
 {
-  auto at = [](Vec2 p, Vec2 q, Vec2 r) {
+  auto at = [](Vec2 p, Vec2 q, Vec2 r)
+  {
     const Vec2 u = q - p, v = r - p;
     return std::atan2(std::abs(cross(u, v)), dot(u, v));
   };
@@ -27,7 +28,8 @@ std::array<double, 3> cornerAngles(Vec2 a, Vec2 b, Vec2 c)
 
 std::array<double, 3> cornerAngles(Vec3 a, Vec3 b, Vec3 c)
 {
-  auto at = [](Vec3 p, Vec3 q, Vec3 r) {
+  auto at = [](Vec3 p, Vec3 q, Vec3 r)
+  {
     const Vec3 u = q - p, v = r - p;
     return std::atan2(norm(cross(u, v)), dot(u, v));
   };

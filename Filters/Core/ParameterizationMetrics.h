@@ -11,7 +11,7 @@ namespace otparam
 
 struct DistortionFigures
 {
-  std::int64_t flippedTriangles = 0; // signed disk area <= 0
+  std::int64_t flippedTriangles = 0;       // signed disk area <= 0
   double meanAngleDistortionDegrees = 0.0; // mean over corners of |disk angle - surface angle|
   double maximumAngleDistortionDegrees = 0.0;
   double meanDilatation = 0.0; // area-weighted mean of sigma_max / sigma_min
@@ -22,7 +22,7 @@ struct DistortionFigures
   // Per triangle.
   std::vector<double> angleDistortion; // mean |log(disk corner angle / surface corner angle)|
   std::vector<double> dilatation;
-  std::vector<double> logAreaRatio;    // log(disk area fraction / surface area fraction)
+  std::vector<double> logAreaRatio; // log(disk area fraction / surface area fraction)
 };
 
 DistortionFigures measureDistortion(const SurfaceMesh& surface, const std::vector<Vec2>& uv);

@@ -64,7 +64,8 @@ bool triangulates(const Regular& rt, const std::vector<Vec2>& diracs)
   {
     return false;
   }
-  auto same = [&](Regular::Vertex_handle v) {
+  auto same = [&](Regular::Vertex_handle v)
+  {
     const BarePoint& p = v->point().point();
     const Vec2 y = diracs[v->info()];
     return p.x() == y.x && p.y() == y.y;
@@ -280,7 +281,8 @@ void PowerDiagram::build(
   }
   HiddenCount = static_cast<int>(std::count(Hidden.begin(), Hidden.end(), 1));
   HiddenFace.assign(n, Triangle{ -1, -1, -1 });
-  for (auto v = rt.hidden_vertices_begin(); rt.dimension() == 2 && v != rt.hidden_vertices_end(); ++v)
+  for (auto v = rt.hidden_vertices_begin(); rt.dimension() == 2 && v != rt.hidden_vertices_end();
+       ++v)
   {
     const auto f = v->face();
     if (f != Regular::Face_handle() && !rt.is_infinite(f))
@@ -549,7 +551,8 @@ void PowerDiagram::ringCell(int i, Vec2 lo, Vec2 hi, PowerCell& out) const
   // back to the first one along the bisector with the neighbour before the first face. Close it
   // with far points, counter-clockwise in steps below 60 degrees so that the closing edges stay
   // far outside the domain.
-  auto direction = [&](int j) {
+  auto direction = [&](int j)
+  {
     const Vec2 d = Sites[i] - Sites[j];
     return (1.0 / norm(d)) * Vec2{ d.y, -d.x }; // the cell is on the left
   };
@@ -570,7 +573,8 @@ void PowerDiagram::ringCell(int i, Vec2 lo, Vec2 hi, PowerCell& out) const
   out.vertices.push_back(last + farOut * outDir);
   out.neighbor.push_back(-1);
   // Rays that turn by more than half a turn meet (at a far face's vertex): no arc between them.
-  const int steps = a1 - a0 > 3.14159265358979323846 ? 1 : static_cast<int>(std::ceil((a1 - a0) / 1.0));
+  const int steps =
+    a1 - a0 > 3.14159265358979323846 ? 1 : static_cast<int>(std::ceil((a1 - a0) / 1.0));
   for (int t = 1; t < steps; ++t)
   {
     const double a = a0 + (a1 - a0) * t / steps;

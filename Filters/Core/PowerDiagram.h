@@ -71,9 +71,9 @@ public:
   // (the kept triangulation's flips stop at hidden Diracs), the power vertices and the rings.
   enum class WhenHidden
   {
-    FindAll,     // the whole diagram, every hidden Dirac with its hiddenFace()
-    ReportSome,  // no cells; hidden() and hiddenFace() for the Diracs found certainly hidden
-    StopAtFirst  // no cells; hidden() for the first Dirac found certainly hidden
+    FindAll,    // the whole diagram, every hidden Dirac with its hiddenFace()
+    ReportSome, // no cells; hidden() and hiddenFace() for the Diracs found certainly hidden
+    StopAtFirst // no cells; hidden() for the first Dirac found certainly hidden
   };
   void build(const std::vector<Vec2>& diracs, const std::vector<Height>& heights,
     WhenHidden whenHidden = WhenHidden::FindAll);
@@ -114,7 +114,7 @@ private:
   int Dimension = 0;
   std::vector<Vec2> PowerVertices; // one per finite face (weighted circumcentre)
   std::vector<Vec2> PowerVertexCorrections;
-  std::vector<int> RingFace;       // faces around each Dirac, CCW (-1: infinite), rows as Adjacency
+  std::vector<int> RingFace; // faces around each Dirac, CCW (-1: infinite), rows as Adjacency
   std::vector<Vec2> Sites;
   std::vector<Height> Heights;
   std::vector<int> Offsets, Adjacency;

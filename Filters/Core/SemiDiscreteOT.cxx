@@ -5,8 +5,8 @@
 #include "SparseCholesky.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Spatial_sort_traits_adapter_2.h>
 #include <CGAL/Hilbert_sort_2.h>
+#include <CGAL/Spatial_sort_traits_adapter_2.h>
 #include <CGAL/property_map.h>
 
 #include <algorithm>
@@ -325,11 +325,13 @@ private:
       return true;
     }
     // How far the residual is from its target (done at <= 1).
-    auto distance = [&](const Eigen::VectorXd& r) {
+    auto distance = [&](const Eigen::VectorXd& r)
+    {
       double ratio = r.norm() / (target.relative * bnorm);
       if (target.perMass > 0.0)
       {
-        ratio = std::min(ratio, r.cwiseProduct(inverseMass).lpNorm<Eigen::Infinity>() / target.perMass);
+        ratio =
+          std::min(ratio, r.cwiseProduct(inverseMass).lpNorm<Eigen::Infinity>() / target.perMass);
       }
       return ratio;
     };
@@ -392,7 +394,8 @@ std::string validateDiracs(const std::vector<Vec2>& diracs, const std::vector<do
     msg << "there are " << diracs.size() << " Diracs but " << masses.size() << " masses";
     return msg.str();
   }
-  auto listIds = [&](const char* what, const std::vector<size_t>& ids) {
+  auto listIds = [&](const char* what, const std::vector<size_t>& ids)
+  {
     msg << ids.size() << " Dirac(s) " << what << " (point ids";
     for (size_t k = 0; k < std::min<size_t>(ids.size(), 10); ++k)
     {
@@ -427,9 +430,10 @@ std::string validateDiracs(const std::vector<Vec2>& diracs, const std::vector<do
   }
   std::vector<size_t> order(diracs.size());
   std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
-    return diracs[a].x < diracs[b].x || (diracs[a].x == diracs[b].x && diracs[a].y < diracs[b].y);
-  });
+  std::sort(order.begin(), order.end(),
+    [&](size_t a, size_t b) {
+      return diracs[a].x < diracs[b].x || (diracs[a].x == diracs[b].x && diracs[a].y < diracs[b].y);
+    });
   for (size_t k = 1; k < order.size(); ++k)
   {
     const Vec2 a = diracs[order[k - 1]], b = diracs[order[k]];
@@ -506,8 +510,8 @@ void inflateSmallCells(const SourceMeasure& source, const std::vector<Vec2>& dir
         trial[i] -= lowering[i];
       }
       trialDiagram.takeTriangulationFrom(diagram);
-      evaluate(source, diracs, trial, trialDiagram, trialEv, result,
-        PowerDiagram::WhenHidden::ReportSome);
+      evaluate(
+        source, diracs, trial, trialDiagram, trialEv, result, PowerDiagram::WhenHidden::ReportSome);
       // Broken: the Diracs found hidden, or else those whose cells left the domain.
       const bool hides = trialDiagram.hiddenCount() > 0;
       int broken = 0;
@@ -747,8 +751,7 @@ void dampedNewton(const SourceMeasure& source, const std::vector<Vec2>& diracs,
         const double trialError = relativeError(trialEv.cellMass, nu);
         if (trialEv.minMass >= eps0 &&
           (gradientNorm(trialEv.cellMass, nu) <= (1.0 - 0.5 * lambda) * gnorm ||
-            trialError <= tolerance ||
-            (lambda == 1.0 && trialError < 0.5 * result.relativeError)))
+            trialError <= tolerance || (lambda == 1.0 && trialError < 0.5 * result.relativeError)))
         {
           accepted = true;
           break;
@@ -759,8 +762,8 @@ void dampedNewton(const SourceMeasure& source, const std::vector<Vec2>& diracs,
     if (!accepted)
     {
       std::ostringstream msg;
-      msg << "Newton step rejected at every damping down to about " << 2.0 * lambda << " after " << it
-          << " iterations (relative error " << result.relativeError
+      msg << "Newton step rejected at every damping down to about " << 2.0 * lambda << " after "
+          << it << " iterations (relative error " << result.relativeError
           << "; the tolerance may be below what double precision allows here)";
       result.message = msg.str();
       return;
@@ -835,8 +838,8 @@ OTResult solveValid(const SourceMeasure& source, const std::vector<Vec2>& diracs
       startHeights(source, diracs, nu, options.tolerance, false, h, diagram, ev, result);
       if (ev.minMass > 0.0)
       {
-        dampedNewton(source, diracs, nu, h, diagram, ev, options.tolerance,
-          options.maxIterations, options.progress, result);
+        dampedNewton(source, diracs, nu, h, diagram, ev, options.tolerance, options.maxIterations,
+          options.progress, result);
       }
       result.message = note.str() + result.message;
     }
@@ -897,7 +900,8 @@ OTResult solveSemiDiscreteOT(const SourceMeasure& source, const std::vector<Vec2
   }
   OTResult sorted = solveValid(source, sortedDiracs, sortedMasses, options);
   OTResult result = sorted;
-  auto unsort = [&](const auto& from, auto& to) {
+  auto unsort = [&](const auto& from, auto& to)
+  {
     if (static_cast<int>(from.size()) == n)
     {
       for (int k = 0; k < n; ++k)

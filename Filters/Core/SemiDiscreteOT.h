@@ -15,8 +15,8 @@ namespace otparam
 
 struct OTOptions
 {
-  double tolerance = 1e-10;    // largest relative cell-mass error accepted
-  int maxIterations = 200;     // Newton iterations
+  double tolerance = 1e-10; // largest relative cell-mass error accepted
+  int maxIterations = 200;  // Newton iterations
   // Start from a coarse problem (MultiscaleStart.h; unit-disk source, from 2e4 Diracs up, masses
   // of high contrast). Measured, 1e5 Diracs of contrast 1e4 (median of 3): 9 Newton iterations
   // on the fine level and 9.4 s in all, against 31 iterations and 22 s from the shrunk Voronoi
@@ -31,14 +31,14 @@ struct OTResult
   bool converged = false;
   bool aborted = false;
   int iterations = 0;
-  double relativeError = 0.0;          // max_i |cellMass_i - mass_i| / mass_i
-  std::vector<double> mass;            // target masses after rescaling to the source's total
-  std::vector<double> heights;         // h_i
-  std::vector<double> cellMass;        // achieved cell measure
-  std::vector<Vec2> centroids;         // barycentre of each clipped power cell (density-weighted)
+  double relativeError = 0.0;   // max_i |cellMass_i - mass_i| / mass_i
+  std::vector<double> mass;     // target masses after rescaling to the source's total
+  std::vector<double> heights;  // h_i
+  std::vector<double> cellMass; // achieved cell measure
+  std::vector<Vec2> centroids;  // barycentre of each clipped power cell (density-weighted)
   std::vector<double> gradientNormHistory; // |cellMass - mass|_2 before each Newton step
   std::vector<double> stepLengthHistory;   // accepted damping factor of each Newton step
-  std::string message;                 // why it stopped
+  std::string message;                     // why it stopped
   // Seconds spent per stage, summed over the run.
   double secondsTriangulation = 0, secondsIntegration = 0, secondsAssembly = 0, secondsSolve = 0;
 };
@@ -70,8 +70,8 @@ struct PowerDiagramGeometry
   std::vector<Triangle> triangles;      // weighted Delaunay triangles (Dirac ids)
   struct Edge
   {
-    Vec2 a, b;  // the part of the shared power edge inside the domain
-    int i, j;   // the two Diracs
+    Vec2 a, b; // the part of the shared power edge inside the domain
+    int i, j;  // the two Diracs
   };
   std::vector<Edge> edges;
 };

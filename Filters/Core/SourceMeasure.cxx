@@ -29,8 +29,8 @@ struct ChordPiece
 {
   PreciseVec2 a, b; // the part of a cell edge inside the disk
   int neighbor;
-  bool enters;     // a is on the circle (the boundary comes in from an arc)
-  bool exits;      // b is on the circle
+  bool enters; // a is on the circle (the boundary comes in from an arc)
+  bool exits;  // b is on the circle
 };
 
 // Part of segment p->q inside the unit disk: the points where it enters (pIn) and leaves (qIn),
@@ -69,7 +69,8 @@ bool segmentInsideUnitDisk(
   {
     return false;
   }
-  auto crossing = [&](LD t) {
+  auto crossing = [&](LD t)
+  {
     // 1 - t is exact for t in [1/2, 1].
     const LD x = t <= 0.5L ? p.x + t * dx : q.x - (1.0L - t) * dx;
     const LD y = t <= 0.5L ? p.y + t * dy : q.y - (1.0L - t) * dy;
@@ -176,7 +177,8 @@ public:
     using LD = long double;
     const PreciseVec2 o = pieces.front().a;
     LD area2 = 0.0L, mx6 = 0.0L, my6 = 0.0L;
-    auto addTriangleEdge = [&](PreciseVec2 p, PreciseVec2 q) {
+    auto addTriangleEdge = [&](PreciseVec2 p, PreciseVec2 q)
+    {
       const LD px = p.x - o.x, py = p.y - o.y, qx = q.x - o.x, qy = q.y - o.y;
       const LD c = px * qy - py * qx;
       area2 += c;
@@ -209,7 +211,8 @@ public:
         continue;
       }
       const double segArea = 0.5 * thetaMinusSin(theta);
-      const double mid = std::atan2(static_cast<double>(p.b.y), static_cast<double>(p.b.x)) + 0.5 * theta;
+      const double mid =
+        std::atan2(static_cast<double>(p.b.y), static_cast<double>(p.b.x)) + 0.5 * theta;
       const double s = std::sin(0.5 * theta);
       const double segMoment = (2.0 / 3.0) * s * s * s;
       area += segArea;
@@ -381,8 +384,8 @@ class TriangulatedSource final : public SourceMeasure
 public:
   std::vector<Vec2> points;
   std::vector<Triangle> triangles;
-  std::vector<double> density;  // per point
-  std::vector<Vec2> hull;       // domain boundary, CCW
+  std::vector<double> density; // per point
+  std::vector<Vec2> hull;      // domain boundary, CCW
   // Linear density per triangle: f(x) = c0 + cx * x + cy * y.
   struct Linear
   {
@@ -447,7 +450,8 @@ public:
       }
     }
     triangleBoxes.forOverlapping(cl, ch,
-      [&](int t) {
+      [&](int t)
+      {
         const Triangle& tri = triangles[t];
         const Vec2 p0 = points[tri[0]], p1 = points[tri[1]], p2 = points[tri[2]];
         // Clip only against the cell edges that cut the triangle; most triangles are inside
@@ -579,7 +583,8 @@ public:
 // Andrew's monotone chain; returns the hull CCW without collinear points.
 std::vector<Vec2> convexHull(std::vector<Vec2> p)
 {
-  std::sort(p.begin(), p.end(), [](Vec2 a, Vec2 b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
+  std::sort(
+    p.begin(), p.end(), [](Vec2 a, Vec2 b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
   if (p.size() < 3)
   {
     return p;
@@ -699,7 +704,8 @@ std::unique_ptr<SourceMeasure> makeTriangulatedSource(const std::vector<Vec2>& p
   {
     // Relative to the first corner: absolute coordinates lose the area of a small domain far
     // from the origin to cancellation.
-    hullArea += cross(src->hull[k] - src->hull[0], src->hull[(k + 1) % src->hull.size()] - src->hull[0]);
+    hullArea +=
+      cross(src->hull[k] - src->hull[0], src->hull[(k + 1) % src->hull.size()] - src->hull[0]);
   }
   hullArea *= 0.5;
   if (!allowNonConvex && std::abs(hullArea - area) > 1e-9 * hullArea)

@@ -31,7 +31,7 @@ struct CellIntegrals
 {
   bool wantEdgeMass = true; // input: false when only mass and moment are needed (faster)
   double mass = 0.0;
-  Vec2 moment;                                 // integral of x * density over the clipped cell
+  Vec2 moment;                                  // integral of x * density over the clipped cell
   std::vector<std::pair<int, double>> edgeMass; // (neighbour, integral of density along the edge)
 };
 

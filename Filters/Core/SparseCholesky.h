@@ -56,7 +56,10 @@ public:
     return Ldlt.solve(b);
   }
 
-  int size() const { return Size; }
+  int size() const
+  {
+    return Size;
+  }
 
   // Eigen's solve keeps no state between calls; CHOLMOD's shares a workspace.
   bool concurrentSolvesAreSafe() const

@@ -182,7 +182,8 @@ std::string checkDiskTopology(const SurfaceMesh& mesh, std::vector<int>& boundar
     }
   }
   // The triangle holding the directed edge (a, b), or -1.
-  auto triangleOf = [&directedEdges](int a, int b) {
+  auto triangleOf = [&directedEdges](int a, int b)
+  {
     const std::uint64_t key = edgeKey(a, b);
     auto it = std::lower_bound(directedEdges.begin(), directedEdges.end(),
       std::make_pair(key, std::numeric_limits<int>::min()));
@@ -207,7 +208,8 @@ std::string checkDiskTopology(const SurfaceMesh& mesh, std::vector<int>& boundar
       fanStart[v] = static_cast<int>(t);
     }
   }
-  auto corner = [&](int t, int v) {
+  auto corner = [&](int t, int v)
+  {
     const auto& tri = tris[t];
     return tri[0] == v ? 0 : tri[1] == v ? 1 : 2;
   };

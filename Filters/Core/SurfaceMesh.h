@@ -18,13 +18,22 @@ struct Vec3
   double z = 0.0;
 };
 
-inline Vec3 operator-(Vec3 a, Vec3 b) { return { a.x - b.x, a.y - b.y, a.z - b.z }; }
-inline double dot(Vec3 a, Vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+inline Vec3 operator-(Vec3 a, Vec3 b)
+{
+  return { a.x - b.x, a.y - b.y, a.z - b.z };
+}
+inline double dot(Vec3 a, Vec3 b)
+{
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
 inline Vec3 cross(Vec3 a, Vec3 b)
 {
   return { a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x };
 }
-inline double norm(Vec3 a) { return std::sqrt(dot(a, a)); }
+inline double norm(Vec3 a)
+{
+  return std::sqrt(dot(a, a));
+}
 
 struct SurfaceMesh
 {

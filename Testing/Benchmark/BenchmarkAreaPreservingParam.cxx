@@ -162,7 +162,8 @@ int main(int argc, char** argv)
     for (int r = 0; r < repeat; ++r)
     {
       Row row{};
-      if (!benchmark::runInChild([&] { return run(mesh, numberOfSamples, options); }, row) || !row.ok)
+      if (!benchmark::runInChild([&] { return run(mesh, numberOfSamples, options); }, row) ||
+        !row.ok)
       {
         std::printf("| %s | failed |\n", name.c_str());
         break;

@@ -25,7 +25,6 @@ double seconds(std::chrono::steady_clock::time_point t0)
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-
 struct Reference
 {
   const char* mesh;
@@ -66,9 +65,10 @@ int main(int argc, char** argv)
               "factor = Laplacian assembly + 2 Cholesky factorizations, iterate = boundary\n"
               "angles + Moebius normalization, metrics = distortion figures + AreaDensity)\n\n",
     repeat);
-  std::printf("| mesh | vertices | check | factor | iterate | metrics | total | its | angle | K "
-              "| flips | CGAL DCM s | BFF s | FDCP s |\n|---|---|---|---|---|---|---|---|---|---|---|"
-              "---|---|---|\n");
+  std::printf(
+    "| mesh | vertices | check | factor | iterate | metrics | total | its | angle | K "
+    "| flips | CGAL DCM s | BFF s | FDCP s |\n|---|---|---|---|---|---|---|---|---|---|---|"
+    "---|---|---|\n");
   for (const auto& name : meshes)
   {
     const SurfaceMesh mesh = testing::readMesh(testing::sharedMesh(name));

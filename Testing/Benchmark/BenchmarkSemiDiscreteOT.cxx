@@ -122,7 +122,8 @@ int main(int argc, char** argv)
       sizes.push_back(static_cast<size_t>(std::atof(argv[a])));
     else
     {
-      std::fprintf(stderr, "usage: %s [--repeat R] [--contrast C] [--single-level] [N ...]\n", argv[0]);
+      std::fprintf(
+        stderr, "usage: %s [--repeat R] [--contrast C] [--single-level] [N ...]\n", argv[0]);
       return 2;
     }
   }
@@ -141,7 +142,8 @@ int main(int argc, char** argv)
     for (int k = 0; k < repeat; ++k)
     {
       Row row;
-      if (benchmark::runInChild([&] { return runOnce(n, contrast, static_cast<unsigned>(k + 1)); }, row))
+      if (benchmark::runInChild(
+            [&] { return runOnce(n, contrast, static_cast<unsigned>(k + 1)); }, row))
         rows.push_back(row);
     }
     if (rows.empty())
@@ -157,15 +159,17 @@ int main(int argc, char** argv)
       n, its, med(&Row::triangulation), med(&Row::integration), med(&Row::assembly),
       med(&Row::solve), total, perIteration, ref, perIteration / ref, med(&Row::peakMiB),
       med(&Row::error),
-      static_cast<int>(std::count_if(rows.begin(), rows.end(), [](const Row& r) { return r.converged > 0; })),
+      static_cast<int>(
+        std::count_if(rows.begin(), rows.end(), [](const Row& r) { return r.converged > 0; })),
       rows.size());
     std::fflush(stdout);
   }
 
-  std::printf("\nRadial ground truth (uniform disk -> density (1 + 3 r^2), equal masses on a "
-              "sunflower): RMS error of the cell centroids' radii against the analytic inverse map\n"
-              "| n | Newton its | seconds | rel. error | RMS centroid radius error |\n"
-              "|---|---|---|---|---|\n");
+  std::printf(
+    "\nRadial ground truth (uniform disk -> density (1 + 3 r^2), equal masses on a "
+    "sunflower): RMS error of the cell centroids' radii against the analytic inverse map\n"
+    "| n | Newton its | seconds | rel. error | RMS centroid radius error |\n"
+    "|---|---|---|---|---|\n");
   for (size_t n : sizes)
   {
     const testing::RadialProblem p = testing::radialProblem(static_cast<int>(n));

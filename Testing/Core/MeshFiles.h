@@ -31,7 +31,8 @@ inline SurfaceMesh readMesh(const std::string& path)
     throw std::runtime_error("cannot open " + path);
   }
   SurfaceMesh mesh;
-  auto addFace = [&](const std::vector<int>& f) {
+  auto addFace = [&](const std::vector<int>& f)
+  {
     for (size_t k = 1; k + 1 < f.size(); ++k)
     {
       mesh.triangles.push_back({ f[0], f[k], f[k + 1] });

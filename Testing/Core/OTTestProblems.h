@@ -37,7 +37,8 @@ inline std::vector<double> mixtureMasses(const std::vector<Vec2>& y, double cont
   std::vector<double> m;
   m.reserve(y.size());
   for (const Vec2& p : y)
-    m.push_back(std::exp(-dot(p - c1, p - c1) / 0.05) + 0.5 * std::exp(-dot(p - c2, p - c2) / 0.02));
+    m.push_back(
+      std::exp(-dot(p - c1, p - c1) / 0.05) + 0.5 * std::exp(-dot(p - c2, p - c2) / 0.02));
   const double mx = *std::max_element(m.begin(), m.end());
   for (double& v : m)
     v = mx / contrast + v * (1 - 1 / contrast);

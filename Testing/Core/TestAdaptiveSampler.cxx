@@ -3,9 +3,9 @@
 // from adaptive samples.
 #include "AdaptiveSampler.h"
 #include "ConformalDiskMap.h"
+#include "DensityField.h"
 #include "MeshFiles.h"
 #include "ParameterizationMetrics.h"
-#include "DensityField.h"
 #include "RingDisk.h"
 #include "SemiDiscreteOT.h"
 
@@ -23,8 +23,14 @@ namespace
 constexpr double Pi = 3.14159265358979323846;
 
 using otparam::testing::PlanarMesh;
-PlanarMesh makeDisk(int rings) { return otparam::testing::makePlanarDisk(rings); }
-double mixture(Vec2 p, double contrast) { return otparam::testing::gaussianMixture(p, contrast); }
+PlanarMesh makeDisk(int rings)
+{
+  return otparam::testing::makePlanarDisk(rings);
+}
+double mixture(Vec2 p, double contrast)
+{
+  return otparam::testing::gaussianMixture(p, contrast);
+}
 
 std::unique_ptr<DensityField> fieldOf(const PlanarMesh& mesh, const std::function<double(Vec2)>& g)
 {
@@ -37,7 +43,10 @@ std::unique_ptr<DensityField> fieldOf(const PlanarMesh& mesh, const std::functio
   return field;
 }
 
-double sum(const std::vector<double>& v) { return std::accumulate(v.begin(), v.end(), 0.0); }
+double sum(const std::vector<double>& v)
+{
+  return std::accumulate(v.begin(), v.end(), 0.0);
+}
 
 SamplerResult adaptiveSamples(const DensityField& field, long long count)
 {
@@ -148,9 +157,9 @@ TEST(AdaptiveSampler, RejectsWhatItCannotSample)
   // Two squares sharing one corner: the boundary touches itself there.
   const std::vector<Vec2> bow = { { 0, 0 }, { 1, 0 }, { 1, 1 }, { 0, 1 }, { 2, 1 }, { 2, 2 },
     { 1, 2 } };
-  const std::vector<Triangle> bowTriangles = { { 0, 1, 2 }, { 0, 2, 3 }, { 2, 4, 5 },
-    { 2, 5, 6 } };
-  EXPECT_EQ(DensityField::create(bow, bowTriangles, std::vector<double>(7, 1.0), {}, error), nullptr);
+  const std::vector<Triangle> bowTriangles = { { 0, 1, 2 }, { 0, 2, 3 }, { 2, 4, 5 }, { 2, 5, 6 } };
+  EXPECT_EQ(
+    DensityField::create(bow, bowTriangles, std::vector<double>(7, 1.0), {}, error), nullptr);
   EXPECT_NE(error.find("touches itself at point 2"), std::string::npos) << error;
   // Negative, NaN and all-zero densities.
   const PlanarMesh disk = makeDisk(3);
@@ -234,7 +243,8 @@ TEST_P(ConformalImages, AdaptiveSamplesMakeTheTransportSolvable)
 
 INSTANTIATE_TEST_SUITE_P(AdaptiveSampler, ConformalImages,
   ::testing::Values("hand_choi_53k.off", "brain_cortex_cut_48k.off"),
-  [](const auto& info) {
+  [](const auto& info)
+  {
     std::string name = info.param;
     return name.substr(0, name.find('.'));
   });
@@ -243,8 +253,8 @@ INSTANTIATE_TEST_SUITE_P(AdaptiveSampler, ConformalImages,
 // squares apart (two components), an L (a concave corner), and a square whose density vanishes
 // on a band (the support is what is sampled). Every sample lies in the support, every triangle
 // of the output inside it, the masses sum to its area and are even.
-PlanarMesh polarGrid(double innerRadius, double outerRadius, double a0, double a1, int rings,
-  int sectors, bool closed)
+PlanarMesh polarGrid(
+  double innerRadius, double outerRadius, double a0, double a1, int rings, int sectors, bool closed)
 {
   PlanarMesh mesh;
   const int columns = closed ? sectors : sectors + 1;
@@ -319,14 +329,14 @@ SupportCase supportCase(int which)
     case 1:
     {
       // Two squares 0.4 apart in one grid: the cells between them are left out.
-      const PlanarMesh m = squareGrid({ -1.0, -0.5 }, 2.0, 20,
-        [](Vec2 c) { return std::abs(c.x) > 0.2 && std::abs(c.y) < 0.5; });
+      const PlanarMesh m = squareGrid(
+        { -1.0, -0.5 }, 2.0, 20, [](Vec2 c) { return std::abs(c.x) > 0.2 && std::abs(c.y) < 0.5; });
       return { "two squares", m, {}, 2 };
     }
     case 2:
     {
-      const PlanarMesh m = squareGrid({ 0.0, 0.0 }, 2.0, 16,
-        [](Vec2 c) { return c.x < 1.0 || c.y < 1.0; });
+      const PlanarMesh m =
+        squareGrid({ 0.0, 0.0 }, 2.0, 16, [](Vec2 c) { return c.x < 1.0 || c.y < 1.0; });
       return { "L", m, {}, 1 };
     }
     default:
@@ -364,10 +374,10 @@ TEST_P(Supports, SamplesOnlyTheSupport)
   for (size_t t = 0; t < triangles.size(); ++t)
   {
     const Triangle& tri = triangles[t];
-    area += density[t] > 0.0
-      ? 0.5 * std::abs(cross(c.mesh.points[tri[1]] - c.mesh.points[tri[0]],
-                c.mesh.points[tri[2]] - c.mesh.points[tri[0]]))
-      : 0.0;
+    area += density[t] > 0.0 ? 0.5 *
+        std::abs(cross(c.mesh.points[tri[1]] - c.mesh.points[tri[0]],
+          c.mesh.points[tri[2]] - c.mesh.points[tri[0]]))
+                             : 0.0;
   }
   std::string error;
   const auto field = DensityField::create(c.mesh.points, triangles, {}, density, error);

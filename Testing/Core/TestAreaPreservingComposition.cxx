@@ -67,8 +67,8 @@ TEST(AreaPreservingComposition, LinearImagesAreInterpolatedExactly)
     images.push_back({ c * p.x - s * p.y, s * p.x + c * p.y });
   }
   const SurfaceMesh surface = flatSurface(mesh);
-  const CompositionResult result = composeWithInverseTransport(
-    surface, mesh.points, boundaryOf(surface), samples.points, images);
+  const CompositionResult result =
+    composeWithInverseTransport(surface, mesh.points, boundaryOf(surface), samples.points, images);
   ASSERT_EQ(result.error, "");
   for (size_t v = 0; v < mesh.points.size(); ++v)
   {
@@ -122,8 +122,8 @@ TEST(AreaPreservingComposition, RejectsMismatchedInputsAndHonoursAbort)
   const SurfaceMesh surface = flatSurface(mesh);
   const std::vector<int> loop = boundaryOf(surface);
   std::vector<Vec2> shorter(mesh.points.begin(), mesh.points.end() - 1);
-  EXPECT_NE(composeWithInverseTransport(surface, shorter, loop, mesh.points, mesh.points).error,
-    "");
+  EXPECT_NE(
+    composeWithInverseTransport(surface, shorter, loop, mesh.points, mesh.points).error, "");
   EXPECT_NE(
     composeWithInverseTransport(surface, mesh.points, loop, mesh.points, shorter).error, "");
   const std::vector<Vec2> two(mesh.points.begin(), mesh.points.begin() + 2);
@@ -138,7 +138,8 @@ TEST(AreaPreservingComposition, RejectsMismatchedInputsAndHonoursAbort)
 
 TEST(AreaPreservingComposition, BoundaryArcMidpoint)
 {
-  auto cellWithArc = [](double from, double to) {
+  auto cellWithArc = [](double from, double to)
+  {
     std::vector<Vec2> cell = { { 0.5 * std::cos(0.5 * (from + to)),
       0.5 * std::sin(0.5 * (from + to)) } };
     for (int k = 0; k <= 8; ++k)

@@ -39,7 +39,8 @@ SurfaceMesh makeHemisphere(int rings)
 double distanceToStereographic(
   const SurfaceMesh& hemisphere, const std::vector<Vec2>& uv, int alignVertex)
 {
-  auto stereo = [&](int v) {
+  auto stereo = [&](int v)
+  {
     const Vec3 p = hemisphere.points[v];
     return std::complex<double>(p.x, p.y) / (1.0 + p.z);
   };
@@ -177,9 +178,9 @@ TEST_P(SharedMeshes, BeatsCGALDiscreteConformalMap)
   const Reference ref = GetParam();
   const SurfaceMesh mesh = readMesh(sharedMesh(ref.mesh));
   const Mapped m = mapMesh(mesh);
-  std::printf("%s: angle %.3f (CGAL %.2f) K %.4f (CGAL %.3f) iterations %d ears %d\n",
-    ref.mesh, m.figures.meanAngleDistortionDegrees, ref.cgalAngle, m.figures.meanDilatation,
-    ref.cgalK, m.map.iterations, m.map.clippedEars);
+  std::printf("%s: angle %.3f (CGAL %.2f) K %.4f (CGAL %.3f) iterations %d ears %d\n", ref.mesh,
+    m.figures.meanAngleDistortionDegrees, ref.cgalAngle, m.figures.meanDilatation, ref.cgalK,
+    m.map.iterations, m.map.clippedEars);
   EXPECT_EQ(m.figures.flippedTriangles, 0);
   EXPECT_LE(largestBoundaryRadiusError(m), 1e-12);
   EXPECT_LT(m.figures.meanAngleDistortionDegrees, ref.cgalAngle);
@@ -194,12 +195,12 @@ INSTANTIATE_TEST_SUITE_P(ConformalDiskMap, SharedMeshes,
     Reference{ "hemisphere_2k.obj", 0.65, 1.020, 0.0005 },
     Reference{ "face_dense_gpp_5k.obj", 2.96, 1.152 },
     Reference{ "face_choi_bff_17k.obj", 6.57, 1.328 },
-    Reference{ "chinese_lion_17k.off", 2.64, 1.100 },
-    Reference{ "ogre_face_20k.obj", 3.57, 1.166 },
+    Reference{ "chinese_lion_17k.off", 2.64, 1.100 }, Reference{ "ogre_face_20k.obj", 3.57, 1.166 },
     Reference{ "face_maxplanck_partial_32k.obj", 3.76, 1.168 },
     Reference{ "brain_cortex_cut_48k.off", 2.85, 1.104 },
     Reference{ "hand_choi_53k.off", 2.49, 1.086 }),
-  [](const auto& info) {
+  [](const auto& info)
+  {
     std::string name = info.param.mesh;
     return name.substr(0, name.find('.'));
   });
@@ -242,11 +243,11 @@ TEST(ConformalDiskMap, RejectsBadCentreAndAlignVertices)
   ASSERT_EQ(checkDiskTopology(mesh, loop), "");
   ConformalDiskMapOptions options;
   options.centerVertex = loop[0];
-  EXPECT_NE(computeConformalDiskMap(mesh, loop, options).error.find("on the boundary"),
-    std::string::npos);
+  EXPECT_NE(
+    computeConformalDiskMap(mesh, loop, options).error.find("on the boundary"), std::string::npos);
   options.centerVertex = 1000000;
-  EXPECT_NE(computeConformalDiskMap(mesh, loop, options).error.find("not a point id"),
-    std::string::npos);
+  EXPECT_NE(
+    computeConformalDiskMap(mesh, loop, options).error.find("not a point id"), std::string::npos);
   options = {};
   options.alignVertex = 0;
   EXPECT_NE(computeConformalDiskMap(mesh, loop, options).error.find("not on the boundary"),
@@ -272,7 +273,8 @@ TEST(DiskTopology, NamesWhatIsWrong)
   EXPECT_EQ(checkDiskTopology(disk, loop), "");
   EXPECT_EQ(loop.size(), 18u);
 
-  auto errorOf = [](const SurfaceMesh& m) {
+  auto errorOf = [](const SurfaceMesh& m)
+  {
     std::vector<int> l;
     return checkDiskTopology(m, l);
   };
@@ -322,8 +324,7 @@ TEST(DiskTopology, NamesWhatIsWrong)
   // Inconsistent orientation.
   SurfaceMesh flipped = disk;
   std::swap(flipped.triangles[5][0], flipped.triangles[5][1]);
-  EXPECT_NE(errorOf(flipped).find("consistently oriented"), std::string::npos)
-    << errorOf(flipped);
+  EXPECT_NE(errorOf(flipped).find("consistently oriented"), std::string::npos) << errorOf(flipped);
 
   // Zero-area triangle.
   SurfaceMesh flat = disk;
@@ -353,8 +354,8 @@ TEST(DiskTopology, NamesWhatIsWrong)
     for (int j = 0; j < nw; ++j)
     {
       const double a = 2 * Pi * i / nu, b = 2 * Pi * j / nw;
-      torus.points.push_back({ (3 + std::cos(b)) * std::cos(a), (3 + std::cos(b)) * std::sin(a),
-        std::sin(b) });
+      torus.points.push_back(
+        { (3 + std::cos(b)) * std::cos(a), (3 + std::cos(b)) * std::sin(a), std::sin(b) });
     }
   auto at = [&](int i, int j) { return ((i + nu) % nu) * nw + (j + nw) % nw; };
   for (int i = 0; i < nu; ++i)

@@ -40,8 +40,8 @@ std::vector<Vec2> gridPoints()
 TEST(Discontinuities, SegmentsInAnLShape)
 {
   // The L: the bottom row and the left column of the 3 x 3 squares.
-  const SupportTriangulation l(gridPoints(),
-    gridSquares({ { 0, 0 }, { 0, 1 }, { 0, 2 }, { 1, 0 }, { 2, 0 } }));
+  const SupportTriangulation l(
+    gridPoints(), gridSquares({ { 0, 0 }, { 0, 1 }, { 0, 2 }, { 1, 0 }, { 2, 0 } }));
   EXPECT_TRUE(l.segmentInside(0, 3));   // along the bottom edge, through points 1 and 2
   EXPECT_FALSE(l.segmentInside(3, 12)); // (3, 0) to (0, 3): through (1.5, 1.5), outside
   EXPECT_TRUE(l.segmentInside(2, 8));   // (2, 0) to (0, 2): through the corner point (1, 1)
@@ -58,20 +58,21 @@ TEST(Discontinuities, SegmentsInAnLShape)
 TEST(Discontinuities, SegmentsBetweenComponentsAndAroundAHole)
 {
   // Two components: the left column and the right column.
-  const SupportTriangulation columns(gridPoints(),
-    gridSquares({ { 0, 0 }, { 1, 0 }, { 2, 0 }, { 0, 2 }, { 1, 2 }, { 2, 2 } }));
+  const SupportTriangulation columns(
+    gridPoints(), gridSquares({ { 0, 0 }, { 1, 0 }, { 2, 0 }, { 0, 2 }, { 1, 2 }, { 2, 2 } }));
   EXPECT_TRUE(columns.segmentInside(0, 13));
   EXPECT_FALSE(columns.segmentInside(1, 2));  // (1, 0) to (2, 0): across the gap
   EXPECT_FALSE(columns.segmentInside(5, 10)); // (1, 1) to (2, 2)
   // A ring of eight squares around a hole (the middle one).
-  const SupportTriangulation ring(gridPoints(), gridSquares({ { 0, 0 }, { 0, 1 }, { 0, 2 },
-    { 1, 0 }, { 1, 2 }, { 2, 0 }, { 2, 1 }, { 2, 2 } }));
+  const SupportTriangulation ring(gridPoints(),
+    gridSquares(
+      { { 0, 0 }, { 0, 1 }, { 0, 2 }, { 1, 0 }, { 1, 2 }, { 2, 0 }, { 2, 1 }, { 2, 2 } }));
   EXPECT_TRUE(ring.segmentInside(0, 3));
-  EXPECT_TRUE(ring.segmentInside(5, 6));    // a side of the hole
-  EXPECT_FALSE(ring.segmentInside(5, 10));  // the hole's diagonal
-  EXPECT_TRUE(ring.segmentInside(4, 7));    // along the hole's lower side: on the boundary
-  EXPECT_FALSE(ring.segmentInside(8, 7));   // (0, 2) to (3, 1): through the hole
-  EXPECT_FALSE(ring.segmentInside(0, 15));  // the whole diagonal crosses the hole
+  EXPECT_TRUE(ring.segmentInside(5, 6));   // a side of the hole
+  EXPECT_FALSE(ring.segmentInside(5, 10)); // the hole's diagonal
+  EXPECT_TRUE(ring.segmentInside(4, 7));   // along the hole's lower side: on the boundary
+  EXPECT_FALSE(ring.segmentInside(8, 7));  // (0, 2) to (3, 1): through the hole
+  EXPECT_FALSE(ring.segmentInside(0, 15)); // the whole diagonal crosses the hole
 }
 
 TEST(Discontinuities, EdgesOfAConvexSupportNeverJump)

@@ -19,7 +19,10 @@ namespace
 {
 using namespace otparam::testing;
 
-double sum(const std::vector<double>& v) { return std::accumulate(v.begin(), v.end(), 0.0); }
+double sum(const std::vector<double>& v)
+{
+  return std::accumulate(v.begin(), v.end(), 0.0);
+}
 } // namespace
 
 TEST(SemiDiscreteOT, VoronoiMassesConvergeInZeroIterations)
@@ -59,7 +62,8 @@ TEST(SemiDiscreteOT, MassesOverSixOrdersOfMagnitude)
 {
   const auto y = randomInDisk(3000, 4);
   const auto m = mixtureMasses(y, 1e6);
-  const double mn = *std::min_element(m.begin(), m.end()), mx = *std::max_element(m.begin(), m.end());
+  const double mn = *std::min_element(m.begin(), m.end()),
+               mx = *std::max_element(m.begin(), m.end());
   ASSERT_NEAR(mx / mn, 1e6, 1e3);
   auto disk = makeUnitDiskSource();
   const OTResult r = solveSemiDiscreteOT(*disk, y, m);
@@ -267,8 +271,9 @@ TEST(PowerDiagram, RebuildUnderNewHeightsMatchesAFreshOne)
     {
       ASSERT_EQ(kept.hidden(i), fresh.hidden(i));
       ASSERT_TRUE(std::equal(kept.neighborsBegin(i), kept.neighborsEnd(i), fresh.neighborsBegin(i),
-        fresh.neighborsEnd(i)) || std::is_permutation(kept.neighborsBegin(i), kept.neighborsEnd(i),
-        fresh.neighborsBegin(i), fresh.neighborsEnd(i)));
+                    fresh.neighborsEnd(i)) ||
+        std::is_permutation(kept.neighborsBegin(i), kept.neighborsEnd(i), fresh.neighborsBegin(i),
+          fresh.neighborsEnd(i)));
     }
     EXPECT_EQ(sortedTriangles(kept), sortedTriangles(fresh)) << amplitude;
     std::printf("height noise %.0e: %d hidden\n", amplitude, fresh.hiddenCount());
@@ -288,8 +293,8 @@ TEST(PowerDiagram, DiracsReportedHiddenByStoppedFlipsAreHidden)
   PowerDiagram kept;
   kept.build(y, h);
   int reported = 0, stops = 0;
-  for (const auto whenHidden : { PowerDiagram::WhenHidden::StopAtFirst,
-         PowerDiagram::WhenHidden::ReportSome })
+  for (const auto whenHidden :
+    { PowerDiagram::WhenHidden::StopAtFirst, PowerDiagram::WhenHidden::ReportSome })
   {
     for (const double amplitude : { 1e-3, 1e-6, 3e-4, 0.0, 1e-4, 1e-5, 2e-3 })
     {
@@ -319,9 +324,11 @@ TEST(PowerDiagram, DiracsReportedHiddenByStoppedFlipsAreHidden)
             ASSERT_GE(f[0], 0);
             const Vec2 a = y[f[0]], b = y[f[1]], c = y[f[2]];
             const double area = cross(b - a, c - a);
-            const double lb = cross(c - y[i], a - y[i]) / area, lc = cross(a - y[i], b - y[i]) / area;
+            const double lb = cross(c - y[i], a - y[i]) / area,
+                         lc = cross(a - y[i], b - y[i]) / area;
             EXPECT_GE(std::min({ 1.0 - lb - lc, lb, lc }), -1e-12);
-            const long double plane = h[f[0]].value() + lb * (h[f[1]] - h[f[0]]) + lc * (h[f[2]] - h[f[0]]);
+            const long double plane =
+              h[f[0]].value() + lb * (h[f[1]] - h[f[0]]) + lc * (h[f[2]] - h[f[0]]);
             EXPECT_LT(plane, h[i].value()) << i;
           }
         }

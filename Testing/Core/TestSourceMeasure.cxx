@@ -120,8 +120,8 @@ TEST(TriangulatedSource, CellWithTwoVerticesOneUpToRounding)
   // every triangle "outside" and gave the cell mass 0.
   const Vec2 o = { 0.6, 0.3 };
   const double h = 1e-6;
-  const std::vector<Vec2> pts = { { o.x + 0.2 * h, o.y + 0.2 * h }, { o.x + 0.8 * h, o.y + 0.2 * h },
-    { o.x + 0.5 * h, o.y + 0.8 * h } };
+  const std::vector<Vec2> pts = { { o.x + 0.2 * h, o.y + 0.2 * h },
+    { o.x + 0.8 * h, o.y + 0.2 * h }, { o.x + 0.5 * h, o.y + 0.8 * h } };
   std::string error;
   auto src = makeTriangulatedSource(pts, { { 0, 1, 2 } }, {}, error);
   ASSERT_TRUE(src) << error;
@@ -153,8 +153,8 @@ TEST(TriangulatedSource, FingerTipCellWithRoundingEdge)
   }
   // A density triangle 1e-5 across around it, density 1.
   std::string error;
-  auto src = makeTriangulatedSource({ { c.x - 1e-5, c.y - 1e-5 }, { c.x + 1e-5, c.y - 1e-5 },
-                                      { c.x, c.y + 1e-5 } },
+  auto src = makeTriangulatedSource(
+    { { c.x - 1e-5, c.y - 1e-5 }, { c.x + 1e-5, c.y - 1e-5 }, { c.x, c.y + 1e-5 } },
     { { 0, 1, 2 } }, {}, error);
   ASSERT_TRUE(src) << error;
   PowerCell cell;
@@ -174,9 +174,11 @@ TEST(TriangulatedSource, RejectsBadDomains)
   EXPECT_FALSE(makeTriangulatedSource(pts, { { 0, 4, 3 }, { 4, 1, 2 }, { 4, 2, 3 } }, {}, error));
   EXPECT_NE(error.find("not convex"), std::string::npos) << error;
   EXPECT_FALSE(makeTriangulatedSource(pts, {}, {}, error));
-  EXPECT_FALSE(makeTriangulatedSource(pts, { { 0, 1, 2 }, { 0, 2, 3 } }, { 1, 1, -1, 1, 1 }, error));
+  EXPECT_FALSE(
+    makeTriangulatedSource(pts, { { 0, 1, 2 }, { 0, 2, 3 } }, { 1, 1, -1, 1, 1 }, error));
   EXPECT_NE(error.find("positive"), std::string::npos) << error;
-  EXPECT_FALSE(makeTriangulatedSource(pts, { { 0, 1, 2 }, { 0, 2, 3 } }, { 1, 1, NAN, 1, 1 }, error));
+  EXPECT_FALSE(
+    makeTriangulatedSource(pts, { { 0, 1, 2 }, { 0, 2, 3 } }, { 1, 1, NAN, 1, 1 }, error));
   EXPECT_FALSE(makeTriangulatedSource(pts, { { 0, 1, 1 } }, {}, error));
   EXPECT_NE(error.find("zero area"), std::string::npos) << error;
   EXPECT_TRUE(makeTriangulatedSource(pts, { { 0, 1, 2 }, { 0, 2, 3 } }, {}, error)) << error;
