@@ -16,8 +16,8 @@
 #include "vtkPolyData.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 
-#include "AdaptiveSampler.h"
-#include "DensityField.h"
+#include "Sampling/PlanarSampler.h"
+#include "Sampling/PlanarDensityField.h"
 #include "OTParamAdapterUtilities.h"
 
 #include <algorithm>

@@ -13,7 +13,7 @@
  * - Uniform: the same refinement with a constant grading, i.e. the conventional uniform
  *   samples (their masses follow the density).
  * - MeshVertices: the input mesh's own points and triangles.
- * The work is done by the VTK-free OTParam core (Filters/Core/AdaptiveSampler.h); this class
+ * The work is done by the VTK-free OTParam core (Filters/Core/Sampling/PlanarSampler.h); this class
  * converts data and validates input.
  *
  * Input: a vtkPolyData made of triangles only, in the plane z = 0, without overlapping

@@ -24,10 +24,10 @@
 #include "vtkSmartPointer.h"
 #include "vtkTable.h"
 
-#include "AreaPreservingComposition.h"
+#include "Composition/DiskComposition.h"
 #include "OTParamAdapterUtilities.h"
-#include "ParameterizationMetrics.h"
-#include "SurfaceMesh.h"
+#include "Mesh/DistortionMetrics.h"
+#include "Mesh/SurfaceMesh.h"
 
 #include <algorithm>
 #include <chrono>

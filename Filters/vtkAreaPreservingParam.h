@@ -5,7 +5,7 @@
  * The whole method of OTParam as one filter: vtkConformalDiskMap -> vtkAdaptiveDensitySampler
  * (on the conformal image's exact per-triangle `AreaDensity`) -> vtkSemiDiscreteOTSolver (the
  * unit disk with uniform density as source) -> composition T^-1 o phi, run as an internal
- * pipeline of the three filters. The composition (Filters/Core/AreaPreservingComposition.h)
+ * pipeline of the three filters. The composition (Filters/Core/Composition/DiskComposition.h)
  * maps every sample to the centroid of its power cell, every mesh vertex by piecewise-linear
  * interpolation over the samples' Delaunay triangulation (boundary vertices exactly on the
  * circle), untangles any flipped triangle, and then, with AreaCorrection on (the default),

@@ -15,10 +15,10 @@
 #include "vtkPolyData.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 
-#include "ConformalDiskMap.h"
+#include "Conformal/ConformalDiskMap.h"
 #include "OTParamAdapterUtilities.h"
-#include "ParameterizationMetrics.h"
-#include "SurfaceMesh.h"
+#include "Mesh/DistortionMetrics.h"
+#include "Mesh/SurfaceMesh.h"
 
 #include <chrono>
 #include <cmath>
@@ -191,7 +191,7 @@ int vtkConformalDiskMap::RequestData(
     return 0;
   }
   options.tolerance = this->Tolerance;
-  options.maximumIterations = this->MaximumNumberOfIterations;
+  options.maximumNumberOfIterations = this->MaximumNumberOfIterations;
   options.progress = [this](double fraction)
   {
     this->UpdateProgress(0.95 * fraction);

@@ -6,7 +6,7 @@
  * disk, with every boundary point exactly on the unit circle. The map is the discrete harmonic
  * (cotangent) extension of boundary angles chosen to minimize the conformal energy: a
  * boundary-first-flattening start refined by Dirichlet-to-Neumann-preconditioned descent (see
- * Filters/Core/ConformalDiskMap.cxx for the method and why). "Ears" (boundary points on a
+ * Filters/Core/Conformal/ConformalDiskMap.cxx for the method and why). "Ears" (boundary points on a
  * single triangle) are handled without manual cleaning. The work is done by the VTK-free
  * OTParam core; this class converts data and validates input.
  *

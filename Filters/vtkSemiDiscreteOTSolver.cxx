@@ -21,10 +21,10 @@
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkStringArray.h"
 
-#include "Discontinuities.h"
+#include "Transport/Discontinuities.h"
 #include "OTParamAdapterUtilities.h"
-#include "SemiDiscreteOT.h"
-#include "SourceMeasure.h"
+#include "Transport/SemiDiscreteOT.h"
+#include "Transport/PlanarSource.h"
 
 #include <algorithm>
 #include <chrono>
@@ -326,7 +326,7 @@ int vtkSemiDiscreteOTSolver::RequestData(
   // ---- Solve.
   otparam::OTOptions options;
   options.tolerance = this->Tolerance;
-  options.maxIterations = this->MaximumNumberOfIterations;
+  options.maximumNumberOfIterations = this->MaximumNumberOfIterations;
   // Newton converges fast near the solution, so iterations/maximum says little: report the
   // larger of that and the fraction of orders of magnitude of the error already gained.
   double firstError = -1.0;

@@ -4,8 +4,8 @@
 //
 //   otparam_sampler_benchmark [--repeat R] [--contrast C] [--uniform] [N ...]
 //                                                        (default N: 10000 100000)
-#include "AdaptiveSampler.h"
-#include "DensityField.h"
+#include "Sampling/PlanarSampler.h"
+#include "Sampling/PlanarDensityField.h"
 #include "ForkedRun.h"
 #include "RingDisk.h"
 

@@ -5,15 +5,15 @@
 //
 //   otparam_param_benchmark [--repeat R] [--samples N] [--correction-decrease F]
 //                           [--no-correction] [mesh ...]   (default: every shared mesh)
-#include "AdaptiveSampler.h"
-#include "AreaPreservingComposition.h"
-#include "ConformalDiskMap.h"
-#include "DensityField.h"
+#include "Sampling/PlanarSampler.h"
+#include "Composition/DiskComposition.h"
+#include "Conformal/ConformalDiskMap.h"
+#include "Sampling/PlanarDensityField.h"
 #include "ForkedRun.h"
 #include "MeshFiles.h"
-#include "ParameterizationMetrics.h"
-#include "SemiDiscreteOT.h"
-#include "SurfaceMesh.h"
+#include "Mesh/DistortionMetrics.h"
+#include "Transport/SemiDiscreteOT.h"
+#include "Mesh/SurfaceMesh.h"
 
 #include <chrono>
 #include <cstdio>

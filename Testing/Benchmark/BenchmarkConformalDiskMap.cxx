@@ -2,11 +2,11 @@
 // runs), accuracy, and the reference systems' seconds from reference-figures.md.
 //
 //   otparam_conformal_benchmark [--repeat R] [mesh ...]   (default: every shared mesh)
-#include "ConformalDiskMap.h"
+#include "Conformal/ConformalDiskMap.h"
 #include "ForkedRun.h"
 #include "MeshFiles.h"
-#include "ParameterizationMetrics.h"
-#include "SurfaceMesh.h"
+#include "Mesh/DistortionMetrics.h"
+#include "Mesh/SurfaceMesh.h"
 
 #include <algorithm>
 #include <chrono>

@@ -6,8 +6,8 @@
 //                                                   (default N: 1000 10000 100000)
 #include "ForkedRun.h"
 #include "OTTestProblems.h"
-#include "PowerDiagram.h"
-#include "SemiDiscreteOT.h"
+#include "Transport/PlanarPowerDiagram.h"
+#include "Transport/SemiDiscreteOT.h"
 
 #include <Eigen/Sparse>
 #include <Eigen/SparseCholesky>

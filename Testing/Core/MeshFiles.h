@@ -2,7 +2,7 @@
 #ifndef OTPARAM_TESTING_MESHFILES_H
 #define OTPARAM_TESTING_MESHFILES_H
 
-#include "SurfaceMesh.h"
+#include "Mesh/SurfaceMesh.h"
 
 #include <fstream>
 #include <sstream>

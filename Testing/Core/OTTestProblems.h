@@ -2,7 +2,7 @@
 #ifndef OTPARAM_OTTESTPROBLEMS_H
 #define OTPARAM_OTTESTPROBLEMS_H
 
-#include "OTGeometry.h"
+#include "Common/Geometry.h"
 
 #include <algorithm>
 #include <cmath>

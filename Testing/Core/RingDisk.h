@@ -4,7 +4,7 @@
 #ifndef OTPARAM_TESTING_RINGDISK_H
 #define OTPARAM_TESTING_RINGDISK_H
 
-#include "OTGeometry.h"
+#include "Common/Geometry.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,0 +1,213 @@
+// A bounding-box hierarchy over planar items (triangles or points), each with a value, for the
+// density queries of DensityField and the triangulated source measure: the item containing a
+// point, the items meeting a box, and the largest value over a region. Written by hand because
+// CGAL 5.5's AABB tree is 3D only and a uniform grid degrades on conformal images, whose triangles
+// shrink by 1e10 and more towards a finger tip (thousands of triangles per grid bucket). Each node
+// keeps the largest value below it, so a maximum query skips every subtree that cannot raise the
+// current best.
+#ifndef OTPARAM_COMMON_BOXTREE_H
+#define OTPARAM_COMMON_BOXTREE_H
+
+#include "Common/Geometry.h"
+
+#include <algorithm>
+#include <limits>
+#include <numeric>
+#include <vector>
+
+namespace otparam
+{
+
+class BoxTree
+{
+public:
+  struct Item
+  {
+    Vec2 lo, hi;
+    double value;
+  };
+
+  BoxTree() = default;
+  explicit BoxTree(std::vector<Item> items)
+    : Items(std::move(items))
+  {
+    this->Order.resize(this->Items.size());
+    std::iota(this->Order.begin(), this->Order.end(), 0);
+    if (!this->Items.empty())
+    {
+      this->Nodes.reserve(2 * this->Items.size() / LeafSize + 2);
+      this->build(0, static_cast<int>(this->Items.size()));
+    }
+  }
+
+  // Calls visit(item) for every item whose box contains x, until visit returns true.
+  template <typename Visit>
+  bool findContaining(Vec2 x, const Visit& visit) const
+  {
+    return !this->Nodes.empty() && this->findContaining(0, x, visit);
+  }
+
+  // Calls visit(item) for every item whose box meets [lo, hi].
+  template <typename Visit>
+  void forOverlapping(Vec2 lo, Vec2 hi, const Visit& visit) const
+  {
+    if (!this->Nodes.empty())
+    {
+      this->forOverlapping(0, lo, hi, visit);
+    }
+  }
+
+  // Calls consider(item, best) for every item whose box meets [lo, hi] and whose value
+  // exceeds best; consider may raise best.
+  template <typename Consider>
+  void maximize(Vec2 lo, Vec2 hi, double& best, const Consider& consider) const
+  {
+    if (!this->Nodes.empty())
+    {
+      this->maximize(0, lo, hi, best, consider);
+    }
+  }
+
+private:
+  static constexpr int LeafSize = 8;
+
+  struct Node
+  {
+    Vec2 lo, hi;
+    double maximum;
+    int begin, end; // range of Order
+    int left = -1, right = -1;
+  };
+
+  int build(int begin, int end)
+  {
+    Node node;
+    node.begin = begin;
+    node.end = end;
+    node.lo = { std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity() };
+    node.hi = { -node.lo.x, -node.lo.y };
+    node.maximum = -std::numeric_limits<double>::infinity();
+    for (int k = begin; k < end; ++k)
+    {
+      const Item& item = this->Items[this->Order[k]];
+      node.lo = { std::min(node.lo.x, item.lo.x), std::min(node.lo.y, item.lo.y) };
+      node.hi = { std::max(node.hi.x, item.hi.x), std::max(node.hi.y, item.hi.y) };
+      node.maximum = std::max(node.maximum, item.value);
+    }
+    const int index = static_cast<int>(this->Nodes.size());
+    this->Nodes.push_back(node);
+    if (end - begin > LeafSize)
+    {
+      // Median split of the box centres along the longer side.
+      const bool alongX = node.hi.x - node.lo.x >= node.hi.y - node.lo.y;
+      auto centre = [&](int id)
+      {
+        const Item& item = this->Items[id];
+        return alongX ? item.lo.x + item.hi.x : item.lo.y + item.hi.y;
+      };
+      const int middle = begin + (end - begin) / 2;
+      std::nth_element(this->Order.begin() + begin, this->Order.begin() + middle,
+        this->Order.begin() + end, [&](int a, int b) { return centre(a) < centre(b); });
+      const int left = this->build(begin, middle);
+      const int right = this->build(middle, end);
+      this->Nodes[index].left = left;
+      this->Nodes[index].right = right;
+    }
+    return index;
+  }
+
+  static bool overlaps(const Node& node, Vec2 lo, Vec2 hi)
+  {
+    return node.lo.x <= hi.x && lo.x <= node.hi.x && node.lo.y <= hi.y && lo.y <= node.hi.y;
+  }
+
+  template <typename Visit>
+  bool findContaining(int index, Vec2 x, const Visit& visit) const
+  {
+    const Node& node = this->Nodes[index];
+    if (!overlaps(node, x, x))
+    {
+      return false;
+    }
+    if (node.left < 0)
+    {
+      for (int k = node.begin; k < node.end; ++k)
+      {
+        const int id = this->Order[k];
+        const Item& item = this->Items[id];
+        if (item.lo.x <= x.x && x.x <= item.hi.x && item.lo.y <= x.y && x.y <= item.hi.y &&
+          visit(id))
+        {
+          return true;
+        }
+      }
+      return false;
+    }
+    return this->findContaining(node.left, x, visit) || this->findContaining(node.right, x, visit);
+  }
+
+  template <typename Visit>
+  void forOverlapping(int index, Vec2 lo, Vec2 hi, const Visit& visit) const
+  {
+    const Node& node = this->Nodes[index];
+    if (!overlaps(node, lo, hi))
+    {
+      return;
+    }
+    if (node.left < 0)
+    {
+      for (int k = node.begin; k < node.end; ++k)
+      {
+        const int id = this->Order[k];
+        const Item& item = this->Items[id];
+        if (item.lo.x <= hi.x && lo.x <= item.hi.x && item.lo.y <= hi.y && lo.y <= item.hi.y)
+        {
+          visit(id);
+        }
+      }
+      return;
+    }
+    this->forOverlapping(node.left, lo, hi, visit);
+    this->forOverlapping(node.right, lo, hi, visit);
+  }
+
+  template <typename Consider>
+  void maximize(int index, Vec2 lo, Vec2 hi, double& best, const Consider& consider) const
+  {
+    const Node& node = this->Nodes[index];
+    if (node.maximum <= best || !overlaps(node, lo, hi))
+    {
+      return;
+    }
+    if (node.left < 0)
+    {
+      for (int k = node.begin; k < node.end; ++k)
+      {
+        const int id = this->Order[k];
+        const Item& item = this->Items[id];
+        if (item.value > best && item.lo.x <= hi.x && lo.x <= item.hi.x && item.lo.y <= hi.y &&
+          lo.y <= item.hi.y)
+        {
+          consider(id, best);
+        }
+      }
+      return;
+    }
+    // The subtree with the larger maximum first: it raises best sooner, pruning more.
+    int first = node.left, second = node.right;
+    if (this->Nodes[second].maximum > this->Nodes[first].maximum)
+    {
+      std::swap(first, second);
+    }
+    this->maximize(first, lo, hi, best, consider);
+    this->maximize(second, lo, hi, best, consider);
+  }
+
+  std::vector<Item> Items;
+  std::vector<int> Order;
+  std::vector<Node> Nodes;
+};
+
+} // namespace otparam
+
+#endif

@@ -1,0 +1,71 @@
+// Plain 2D and 3D geometry shared by the OTParam core (no VTK, no CGAL in this header).
+#ifndef OTPARAM_COMMON_GEOMETRY_H
+#define OTPARAM_COMMON_GEOMETRY_H
+
+#include <array>
+#include <cmath>
+#include <vector>
+
+namespace otparam
+{
+
+struct Vec2
+{
+  double x = 0.0;
+  double y = 0.0;
+};
+
+inline Vec2 operator+(Vec2 a, Vec2 b)
+{
+  return { a.x + b.x, a.y + b.y };
+}
+inline Vec2 operator-(Vec2 a, Vec2 b)
+{
+  return { a.x - b.x, a.y - b.y };
+}
+inline Vec2 operator*(double s, Vec2 a)
+{
+  return { s * a.x, s * a.y };
+}
+inline double dot(Vec2 a, Vec2 b)
+{
+  return a.x * b.x + a.y * b.y;
+}
+inline double cross(Vec2 a, Vec2 b)
+{
+  return a.x * b.y - a.y * b.x;
+}
+inline double norm(Vec2 a)
+{
+  return std::hypot(a.x, a.y);
+}
+
+struct Vec3
+{
+  double x = 0.0;
+  double y = 0.0;
+  double z = 0.0;
+};
+
+inline Vec3 operator-(Vec3 a, Vec3 b)
+{
+  return { a.x - b.x, a.y - b.y, a.z - b.z };
+}
+inline double dot(Vec3 a, Vec3 b)
+{
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+inline Vec3 cross(Vec3 a, Vec3 b)
+{
+  return { a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x };
+}
+inline double norm(Vec3 a)
+{
+  return std::sqrt(dot(a, a));
+}
+
+using Triangle = std::array<int, 3>;
+
+} // namespace otparam
+
+#endif

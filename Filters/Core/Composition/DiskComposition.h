@@ -1,0 +1,86 @@
+// The last step of the area-preserving parameterization: compose the conformal disk map phi
+// with the inverse of the semi-discrete transport, T^-1 o phi (method.md, "Compose").
+//
+// 1. Interpolation (the paper's composition). T^-1(y_i) is the centroid of the power cell W_i
+//    (for a sample on the unit circle: the centroid's direction on the circle, since T maps the
+//    boundary onto the boundary). Every mesh vertex of the conformal image is mapped by
+//    piecewise-linear interpolation over the Delaunay triangulation of the samples; a vertex in
+//    a circular segment outside that triangulation (between two boundary samples) is mapped
+//    by the same interpolation along the chord and a radial blend to the circle, so mesh
+//    boundary vertices end exactly on the circle.
+// 2. Untangling. A triangle whose three images are in the wrong order (the interpolant is
+//    only piecewise linear, and a mesh triangle may straddle several sample triangles) is
+//    repaired by Tutte relaxation of a small, growing neighbourhood with its rim fixed.
+// 3. Area correction (optional, on by default). The transport is area-preserving in the limit
+//    of many samples; at a finite count, what remains is the interpolation error inside each
+//    sample triangle (mesh triangles that span several sample triangles where the transport
+//    bends, and the mesh-scale noise of the discrete conformal factor). Gauss-Seidel sweeps of
+//    per-vertex Gauss-Newton steps on sum_t A*_t log(A_t / A*_t)^2 move each vertex so its
+//    triangles get their surface area fraction A*_t; a step is kept only if it lowers the
+//    star's sum A*_t (r + 1/r - 2), r = A_t / A*_t, which is infinite at zero area, so the
+//    correction never creates a flip; boundary vertices keep the transport's boundary map
+//    (only ear corners, and stars still off by 5% at the end, slide along the circle). Both the
+//    interpolated and the corrected figures are reported.
+#ifndef OTPARAM_COMPOSITION_DISKCOMPOSITION_H
+#define OTPARAM_COMPOSITION_DISKCOMPOSITION_H
+
+#include "Mesh/SurfaceMesh.h"
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace otparam
+{
+
+struct CompositionOptions
+{
+  bool correctAreas = true;
+  int maximumCorrectionSweeps = 200;
+  // Sweeps stop once one of them lowers the area-weighted mean |log area ratio| by less than
+  // this fraction of its value (or moves no vertex); then at most 50 more sweeps move only
+  // the vertices that still have a triangle off by more than 5%.
+  double correctionRelativeDecrease = 0.01;
+  // Called with the fraction done; returning false aborts.
+  std::function<bool(double)> progress;
+};
+
+struct CompositionResult
+{
+  std::string error; // empty on success
+  bool aborted = false;
+  std::vector<Vec2> uv;                       // final disk coordinates per mesh point
+  std::vector<Vec2> interpolatedUv;           // after step 1 only
+  std::int64_t outsideSampleHull = 0;         // mesh points mapped through a circular segment
+  std::int64_t flippedAfterInterpolation = 0; // triangles with signed area <= 0 after step 1
+  std::int64_t untangledVertices = 0;         // vertices moved by step 2
+  std::int64_t flippedTriangles = 0;          // after everything (0 unless untangling failed)
+  int correctionSweeps = 0;
+  double meanAbsLogAreaRatioInterpolated = 0.0; // after steps 1-2
+  double meanAbsLogAreaRatio = 0.0;             // final
+  double secondsInterpolation = 0.0;
+  double secondsUntangling = 0.0;
+  double secondsCorrection = 0.0;
+};
+
+// The middle of the longest run of a clipped power cell's boundary (closed polygon, arcs of
+// the unit circle sampled) lying on the unit circle; {NaN, NaN} when none does. For a sample
+// on the circle this is a better T^-1 than its cell's centroid: T maps that arc onto the
+// sample, and the arc's middle is off the exact preimage by O(h^2), where the centroid's
+// direction is off by O(h) when the cell leans to one side.
+Vec2 boundaryArcMidpoint(const std::vector<Vec2>& cell);
+
+// `conformalUv`: the conformal disk image of `surface` (boundary on the unit circle,
+// triangles positively oriented); `boundaryLoop` its boundary vertices in order.
+// `samples`: the Dirac positions y_i in the conformal disk; `sampleImages`: their T^-1, the
+// centroids of their power cells from the converged transport (for samples on the circle,
+// better boundaryArcMidpoint; images of those are put on the circle in any case).
+CompositionResult composeWithInverseTransport(const SurfaceMesh& surface,
+  const std::vector<Vec2>& conformalUv, const std::vector<int>& boundaryLoop,
+  const std::vector<Vec2>& samples, const std::vector<Vec2>& sampleImages,
+  const CompositionOptions& options = {});
+
+} // namespace otparam
+
+#endif

@@ -1,0 +1,167 @@
+#include "Mesh/DistortionMetrics.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace otparam
+{
+namespace
+{
+constexpr double Pi = 3.14159265358979323846;
+constexpr double TinyArea = 1e-300;
+
+double signedArea(Vec2 a, Vec2 b, Vec2 c)
+{
+  return 0.5 * cross(b - a, c - a);
+}
+
+// Unsigned corner angles of a triangle (at vertex 0, 1, 2).
+std::array<double, 3> cornerAngles(Vec2 a, Vec2 b, Vec2 c)
+{
+  auto at = [](Vec2 p, Vec2 q, Vec2 r)
+  {
+    const Vec2 u = q - p, v = r - p;
+    return std::atan2(std::abs(cross(u, v)), dot(u, v));
+  };
+  return { at(a, b, c), at(b, c, a), at(c, a, b) };
+}
+
+std::array<double, 3> cornerAngles(Vec3 a, Vec3 b, Vec3 c)
+{
+  auto at = [](Vec3 p, Vec3 q, Vec3 r)
+  {
+    const Vec3 u = q - p, v = r - p;
+    return std::atan2(norm(cross(u, v)), dot(u, v));
+  };
+  return { at(a, b, c), at(b, c, a), at(c, a, b) };
+}
+
+// sigma_max / sigma_min of the linear map taking the surface triangle to the disk triangle.
+double dilatation(Vec3 p0, Vec3 p1, Vec3 p2, Vec2 q0, Vec2 q1, Vec2 q2)
+{
+  // Surface triangle in an orthonormal frame of its plane.
+  const Vec3 e1 = p1 - p0, e2 = p2 - p0;
+  const double l1 = norm(e1);
+  const Vec3 x = { e1.x / l1, e1.y / l1, e1.z / l1 };
+  const Vec3 n = cross(e1, e2);
+  Vec3 y = cross(n, x);
+  const double ly = norm(y);
+  y = { y.x / ly, y.y / ly, y.z / ly };
+  const double s11 = dot(e1, x), s12 = dot(e2, x), s21 = dot(e1, y), s22 = dot(e2, y);
+  const double sdet = s11 * s22 - s12 * s21;
+  const Vec2 d1 = q1 - q0, d2 = q2 - q0;
+  // J = D S^{-1}
+  const double j11 = (d1.x * s22 - d2.x * s21) / sdet, j12 = (-d1.x * s12 + d2.x * s11) / sdet;
+  const double j21 = (d1.y * s22 - d2.y * s21) / sdet, j22 = (-d1.y * s12 + d2.y * s11) / sdet;
+  const double halfFrobenius2 = 0.5 * (j11 * j11 + j12 * j12 + j21 * j21 + j22 * j22);
+  const double det = std::abs(j11 * j22 - j12 * j21);
+  const double root = std::sqrt(std::max(0.0, (halfFrobenius2 - det) * (halfFrobenius2 + det)));
+  const double sigmaMax2 = halfFrobenius2 + root;
+  const double sigmaMin2 = det * det / std::max(sigmaMax2, TinyArea);
+  return std::sqrt(sigmaMax2 / std::max(sigmaMin2, TinyArea));
+}
+} // namespace
+
+DistortionFigures measureDistortion(const SurfaceMesh& surface, const std::vector<Vec2>& uv)
+{
+  DistortionFigures f;
+  const size_t nt = surface.triangles.size();
+  f.angleDistortion.resize(nt);
+  f.dilatation.resize(nt);
+  f.logAreaRatio.resize(nt);
+  std::vector<double> diskArea(nt), surfaceArea(nt);
+  double diskTotal = 0.0, surfaceTotal = 0.0;
+  for (size_t t = 0; t < nt; ++t)
+  {
+    const auto& tri = surface.triangles[t];
+    diskArea[t] = signedArea(uv[tri[0]], uv[tri[1]], uv[tri[2]]);
+    surfaceArea[t] = triangleArea(surface, tri);
+    diskTotal += diskArea[t];
+    surfaceTotal += surfaceArea[t];
+  }
+  // The scorer's convention: the orientation with positive total area is the right one.
+  const double orientation = diskTotal >= 0.0 ? 1.0 : -1.0;
+  diskTotal = 0.0;
+  for (size_t t = 0; t < nt; ++t)
+  {
+    diskArea[t] *= orientation;
+    f.flippedTriangles += diskArea[t] <= 0.0;
+    diskTotal += diskArea[t];
+  }
+  double angleSum = 0.0;
+  for (size_t t = 0; t < nt; ++t)
+  {
+    const auto& tri = surface.triangles[t];
+    const Vec3 p0 = surface.points[tri[0]], p1 = surface.points[tri[1]],
+               p2 = surface.points[tri[2]];
+    const auto a3 = cornerAngles(p0, p1, p2);
+    const auto a2 = cornerAngles(uv[tri[0]], uv[tri[1]], uv[tri[2]]);
+    double logSum = 0.0;
+    for (int k = 0; k < 3; ++k)
+    {
+      const double degrees = std::abs(a2[k] - a3[k]) * 180.0 / Pi;
+      angleSum += degrees;
+      f.maximumAngleDistortionDegrees = std::max(f.maximumAngleDistortionDegrees, degrees);
+      logSum += std::abs(std::log(std::max(a2[k], TinyArea) / a3[k]));
+    }
+    f.angleDistortion[t] = logSum / 3.0;
+
+    const double weight = surfaceArea[t] / surfaceTotal;
+    const double diskFraction = std::max(diskArea[t], TinyArea) / diskTotal;
+    f.logAreaRatio[t] = std::log(diskFraction / weight);
+    f.meanAbsLogAreaRatio += weight * std::abs(f.logAreaRatio[t]);
+    f.maximumAbsLogAreaRatio = std::max(f.maximumAbsLogAreaRatio, std::abs(f.logAreaRatio[t]));
+
+    f.dilatation[t] = dilatation(p0, p1, p2, uv[tri[0]], uv[tri[1]], uv[tri[2]]);
+    f.meanDilatation += weight * f.dilatation[t];
+    f.maximumDilatation = std::max(f.maximumDilatation, f.dilatation[t]);
+  }
+  f.meanAngleDistortionDegrees = nt ? angleSum / (3.0 * static_cast<double>(nt)) : 0.0;
+  return f;
+}
+
+void computeAreaDensity(const SurfaceMesh& surface, const std::vector<Vec2>& uv,
+  std::vector<double>& perTriangle, std::vector<double>& perPoint)
+{
+  const size_t nt = surface.triangles.size();
+  std::vector<double> surfaceArea(nt), diskArea(nt);
+  double surfaceTotal = 0.0;
+  for (size_t t = 0; t < nt; ++t)
+  {
+    const auto& tri = surface.triangles[t];
+    surfaceArea[t] = triangleArea(surface, tri);
+    diskArea[t] = signedArea(uv[tri[0]], uv[tri[1]], uv[tri[2]]);
+    surfaceTotal += surfaceArea[t];
+  }
+  const double scale = Pi / surfaceTotal;
+  perTriangle.assign(nt, 0.0);
+  perPoint.assign(surface.points.size(), 0.0);
+  std::vector<double> pointDiskArea(surface.points.size(), 0.0);
+  double largest = 0.0;
+  for (size_t t = 0; t < nt; ++t)
+  {
+    if (diskArea[t] > 0.0)
+    {
+      perTriangle[t] = scale * surfaceArea[t] / diskArea[t];
+      largest = std::max(largest, perTriangle[t]);
+    }
+  }
+  for (size_t t = 0; t < nt; ++t)
+  {
+    if (!(diskArea[t] > 0.0) || !std::isfinite(perTriangle[t]))
+    {
+      perTriangle[t] = largest;
+    }
+    for (int v : surface.triangles[t])
+    {
+      perPoint[v] += scale * surfaceArea[t];
+      pointDiskArea[v] += std::max(diskArea[t], 0.0);
+    }
+  }
+  for (size_t v = 0; v < perPoint.size(); ++v)
+  {
+    perPoint[v] = pointDiskArea[v] > 0.0 ? perPoint[v] / pointDiskArea[v] : largest;
+  }
+}
+
+} // namespace otparam

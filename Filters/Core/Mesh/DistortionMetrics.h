@@ -1,0 +1,38 @@
+// How far a disk parameterization of a surface is from conformal and from area-preserving,
+// per triangle and in summary, with the definitions of ../shared/docs/reference-figures.md
+// (both the surface and the disk image scaled to the same total area).
+#ifndef OTPARAM_MESH_DISTORTIONMETRICS_H
+#define OTPARAM_MESH_DISTORTIONMETRICS_H
+
+#include "Mesh/SurfaceMesh.h"
+
+namespace otparam
+{
+
+struct DistortionFigures
+{
+  std::int64_t flippedTriangles = 0;       // signed disk area <= 0
+  double meanAngleDistortionDegrees = 0.0; // mean over corners of |disk angle - surface angle|
+  double maximumAngleDistortionDegrees = 0.0;
+  double meanDilatation = 0.0; // area-weighted mean of sigma_max / sigma_min
+  double maximumDilatation = 0.0;
+  double meanAbsLogAreaRatio = 0.0; // area-weighted mean of |log(disk / surface area fraction)|
+  double maximumAbsLogAreaRatio = 0.0;
+
+  // Per triangle.
+  std::vector<double> angleDistortion; // mean |log(disk corner angle / surface corner angle)|
+  std::vector<double> dilatation;
+  std::vector<double> logAreaRatio; // log(disk area fraction / surface area fraction)
+};
+
+DistortionFigures measureDistortion(const SurfaceMesh& surface, const std::vector<Vec2>& uv);
+
+// Surface area element over disk area element after scaling the surface to total area pi:
+// per triangle (the exact ratio of the two areas) and per point (ratio of the areas of the
+// triangles around it). Flipped or collapsed disk triangles get the largest finite ratio.
+void computeAreaDensity(const SurfaceMesh& surface, const std::vector<Vec2>& uv,
+  std::vector<double>& perTriangle, std::vector<double>& perPoint);
+
+} // namespace otparam
+
+#endif

@@ -1,0 +1,338 @@
+#include "Mesh/SurfaceMesh.h"
+
+#include "Common/IdList.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <sstream>
+
+namespace otparam
+{
+namespace
+{
+
+std::uint64_t edgeKey(int a, int b)
+{
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) |
+    static_cast<std::uint32_t>(b);
+}
+
+struct UnionFind
+{
+  std::vector<int> parent;
+  explicit UnionFind(size_t n)
+    : parent(n)
+  {
+    std::iota(parent.begin(), parent.end(), 0);
+  }
+  int find(int i)
+  {
+    while (parent[i] != i)
+    {
+      i = parent[i] = parent[parent[i]];
+    }
+    return i;
+  }
+  bool unite(int a, int b)
+  {
+    a = find(a);
+    b = find(b);
+    if (a == b)
+    {
+      return false;
+    }
+    parent[a] = b;
+    return true;
+  }
+};
+} // namespace
+
+double triangleArea(const SurfaceMesh& mesh, const Triangle& t)
+{
+  const Vec3 a = mesh.points[t[0]];
+  return 0.5 * norm(cross(mesh.points[t[1]] - a, mesh.points[t[2]] - a));
+}
+
+std::string compactMesh(const std::vector<Vec3>& points,
+  const std::vector<std::array<std::int64_t, 3>>& triangles, CompactedMesh& result)
+{
+  const auto n = static_cast<std::int64_t>(points.size());
+  std::vector<std::int64_t> newId(points.size(), -1);
+  for (size_t t = 0; t < triangles.size(); ++t)
+  {
+    const auto& tri = triangles[t];
+    for (auto v : tri)
+    {
+      if (v < 0 || v >= n)
+      {
+        std::ostringstream msg;
+        msg << "triangle " << t << " uses point id " << v << ", outside [0, " << n << ")";
+        return msg.str();
+      }
+    }
+    if (tri[0] == tri[1] || tri[1] == tri[2] || tri[2] == tri[0])
+    {
+      std::ostringstream msg;
+      msg << "triangle " << t << " uses point " << (tri[0] == tri[1] ? tri[0] : tri[2])
+          << " twice (a degenerate triangle with zero area)";
+      return msg.str();
+    }
+    for (auto v : tri)
+    {
+      newId[v] = 0;
+    }
+  }
+  result = CompactedMesh();
+  for (std::int64_t i = 0; i < n; ++i)
+  {
+    if (newId[i] < 0)
+    {
+      ++result.unreferencedPoints;
+      continue;
+    }
+    if (result.mesh.points.size() >= static_cast<size_t>(std::numeric_limits<int>::max()))
+    {
+      return "the surface has too many points for 32-bit vertex indices";
+    }
+    newId[i] = static_cast<std::int64_t>(result.mesh.points.size());
+    result.mesh.points.push_back(points[i]);
+    result.originalPointIds.push_back(i);
+  }
+  result.mesh.triangles.reserve(triangles.size());
+  for (const auto& tri : triangles)
+  {
+    result.mesh.triangles.push_back({ static_cast<int>(newId[tri[0]]),
+      static_cast<int>(newId[tri[1]]), static_cast<int>(newId[tri[2]]) });
+  }
+  return {};
+}
+
+std::string checkDiskTopology(const SurfaceMesh& mesh, std::vector<int>& boundaryLoop,
+  const std::vector<std::int64_t>* reportedIds)
+{
+  boundaryLoop.clear();
+  auto id = [reportedIds](int v) -> std::int64_t { return reportedIds ? (*reportedIds)[v] : v; };
+  const auto& tris = mesh.triangles;
+  const size_t nv = mesh.points.size();
+  std::ostringstream msg;
+  if (tris.empty())
+  {
+    return "the surface has no triangles";
+  }
+
+  std::vector<std::int64_t> bad;
+  for (size_t v = 0; v < nv; ++v)
+  {
+    const Vec3 p = mesh.points[v];
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+    {
+      bad.push_back(id(static_cast<int>(v)));
+    }
+  }
+  if (!bad.empty())
+  {
+    msg << bad.size() << " point(s) have NaN or infinite coordinates: point ids " << idList(bad);
+    return msg.str();
+  }
+
+  // Degenerate = area negligible against the square of the longest edge (a cap or needle
+  // whose angles, and so the cotangent weights, are meaningless), or all points coincident.
+  for (size_t t = 0; t < tris.size(); ++t)
+  {
+    const Vec3 a = mesh.points[tris[t][0]], b = mesh.points[tris[t][1]],
+               c = mesh.points[tris[t][2]];
+    const double longest = std::max({ norm(b - a), norm(c - b), norm(a - c) });
+    const double twiceArea = norm(cross(b - a, c - a));
+    if (!(twiceArea > 1e-12 * longest * longest))
+    {
+      bad.push_back(static_cast<std::int64_t>(t));
+    }
+  }
+  if (!bad.empty())
+  {
+    msg << bad.size() << " triangle(s) have zero area (degenerate): triangle ids " << idList(bad);
+    return msg.str();
+  }
+
+  // Directed edge -> triangle, as a sorted array (several times faster than a hash map here);
+  // an undirected edge may carry each direction once.
+  std::vector<std::pair<std::uint64_t, int>> directedEdges;
+  directedEdges.reserve(3 * tris.size());
+  for (size_t t = 0; t < tris.size(); ++t)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      directedEdges.emplace_back(edgeKey(tris[t][k], tris[t][(k + 1) % 3]), static_cast<int>(t));
+    }
+  }
+  std::sort(directedEdges.begin(), directedEdges.end());
+  for (size_t e = 1; e < directedEdges.size(); ++e)
+  {
+    if (directedEdges[e].first == directedEdges[e - 1].first)
+    {
+      const int a = static_cast<int>(directedEdges[e].first >> 32);
+      const int b = static_cast<int>(directedEdges[e].first & 0xffffffffu);
+      msg << "triangles " << directedEdges[e - 1].second << " and " << directedEdges[e].second
+          << " both use the edge (" << id(a) << ", " << id(b)
+          << ") in the same direction: the surface is non-manifold there or not "
+             "consistently oriented";
+      return msg.str();
+    }
+  }
+  // The triangle holding the directed edge (a, b), or -1.
+  auto triangleOf = [&directedEdges](int a, int b)
+  {
+    const std::uint64_t key = edgeKey(a, b);
+    auto it = std::lower_bound(directedEdges.begin(), directedEdges.end(),
+      std::make_pair(key, std::numeric_limits<int>::min()));
+    return it != directedEdges.end() && it->first == key ? it->second : -1;
+  };
+  // Three or more triangles on one edge show up as a repeated direction above.
+
+  // Vertex manifoldness: the triangles around a vertex must form one fan.
+  std::vector<int> degree(nv, 0);
+  for (const auto& t : tris)
+  {
+    for (int v : t)
+    {
+      ++degree[v];
+    }
+  }
+  std::vector<int> fanStart(nv, -1);
+  for (size_t t = 0; t < tris.size(); ++t)
+  {
+    for (int v : tris[t])
+    {
+      fanStart[v] = static_cast<int>(t);
+    }
+  }
+  auto corner = [&](int t, int v)
+  {
+    const auto& tri = tris[t];
+    return tri[0] == v ? 0 : tri[1] == v ? 1 : 2;
+  };
+  for (size_t v = 0; v < nv; ++v)
+  {
+    const int vi = static_cast<int>(v);
+    if (degree[v] == 0)
+    {
+      msg << "point " << id(vi) << " belongs to no triangle (compact the mesh first)";
+      return msg.str();
+    }
+    int visited = 1;
+    // Around v one way: cross the edge (v, next) into the triangle that holds (next, v).
+    const int start = fanStart[v];
+    int t = start;
+    bool closed = false;
+    while (true)
+    {
+      const int next = tris[t][(corner(t, vi) + 1) % 3];
+      t = triangleOf(next, vi);
+      if (t < 0)
+      {
+        break;
+      }
+      if (t == start)
+      {
+        closed = true;
+        break;
+      }
+      ++visited;
+    }
+    if (!closed)
+    {
+      t = start;
+      while (true)
+      {
+        const int prev = tris[t][(corner(t, vi) + 2) % 3];
+        const int neighbour = triangleOf(vi, prev);
+        if (neighbour < 0)
+        {
+          break;
+        }
+        t = neighbour;
+        ++visited;
+      }
+    }
+    if (visited != degree[v])
+    {
+      msg << "point " << id(vi) << " is a non-manifold vertex: its " << degree[v]
+          << " triangles do not form a single fan";
+      return msg.str();
+    }
+  }
+
+  UnionFind components(nv);
+  size_t count = nv;
+  for (const auto& t : tris)
+  {
+    count -= components.unite(t[0], t[1]);
+    count -= components.unite(t[1], t[2]);
+  }
+  if (count != 1)
+  {
+    msg << "the surface has " << count
+        << " connected components; a disk-like surface needs exactly 1";
+    return msg.str();
+  }
+
+  // Boundary: directed edges whose reverse is absent; with manifold vertices each boundary
+  // vertex has exactly one outgoing boundary edge.
+  std::vector<int> nextOnBoundary(nv, -1);
+  size_t boundaryEdges = 0;
+  for (const auto& t : tris)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      const int a = t[k], b = t[(k + 1) % 3];
+      if (triangleOf(b, a) < 0)
+      {
+        nextOnBoundary[a] = b;
+        ++boundaryEdges;
+      }
+    }
+  }
+  std::vector<char> seen(nv, 0);
+  std::vector<std::vector<int>> loops;
+  for (size_t v = 0; v < nv; ++v)
+  {
+    if (nextOnBoundary[v] < 0 || seen[v])
+    {
+      continue;
+    }
+    std::vector<int> loop;
+    for (int w = static_cast<int>(v); !seen[w]; w = nextOnBoundary[w])
+    {
+      seen[w] = 1;
+      loop.push_back(w);
+    }
+    loops.push_back(std::move(loop));
+  }
+  const size_t edges = (3 * tris.size() + boundaryEdges) / 2;
+  const long long euler = static_cast<long long>(nv) - static_cast<long long>(edges) +
+    static_cast<long long>(tris.size());
+  if (loops.empty())
+  {
+    msg << "the surface is closed (no boundary loop, Euler characteristic " << euler
+        << "); a disk-like surface needs exactly 1 boundary loop";
+    return msg.str();
+  }
+  if (loops.size() > 1)
+  {
+    msg << "the surface has " << loops.size()
+        << " boundary loops; a disk-like surface needs exactly 1";
+    return msg.str();
+  }
+  if (euler != 1)
+  {
+    msg << "the surface has genus " << (1 - euler) / 2 << " (Euler characteristic " << euler
+        << "); a disk-like surface has genus 0 (Euler characteristic 1)";
+    return msg.str();
+  }
+  boundaryLoop = std::move(loops.front());
+  return {};
+}
+
+} // namespace otparam

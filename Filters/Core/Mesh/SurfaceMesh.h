@@ -1,0 +1,45 @@
+// Triangle surfaces and the checks that make a surface a topological disk.
+#ifndef OTPARAM_MESH_SURFACEMESH_H
+#define OTPARAM_MESH_SURFACEMESH_H
+
+#include "Common/Geometry.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace otparam
+{
+
+struct SurfaceMesh
+{
+  std::vector<Vec3> points;
+  std::vector<Triangle> triangles;
+};
+
+// The referenced part of a triangle soup: points used by no triangle are dropped.
+struct CompactedMesh
+{
+  SurfaceMesh mesh;
+  std::vector<std::int64_t> originalPointIds; // mesh.points[i] == input point originalPointIds[i]
+  std::int64_t unreferencedPoints = 0;
+};
+
+// Fails (returns a message) on triangles that use a point id outside [0, numberOfPoints) or
+// the same point twice.
+std::string compactMesh(const std::vector<Vec3>& points,
+  const std::vector<std::array<std::int64_t, 3>>& triangles, CompactedMesh& result);
+
+// A disk: finite coordinates, no degenerate triangles, manifold and consistently oriented,
+// connected, exactly one boundary loop, Euler characteristic 1. Returns "" when it is one
+// (and its boundary loop, in the direction of the triangles' orientation), else a message that
+// says what is wrong and where (ids are those of `mesh`).
+// `reportedIds` (optional) maps mesh point ids to the ids the messages should name.
+std::string checkDiskTopology(const SurfaceMesh& mesh, std::vector<int>& boundaryLoop,
+  const std::vector<std::int64_t>* reportedIds = nullptr);
+
+double triangleArea(const SurfaceMesh& mesh, const Triangle& t);
+
+} // namespace otparam
+
+#endif

@@ -1,0 +1,488 @@
+#include "Sampling/PlanarDensityField.h"
+
+#include "Common/IdList.h"
+
+#include <CGAL/Convex_hull_traits_adapter_2.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/convex_hull_2.h>
+#include <CGAL/property_map.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <unordered_map>
+#include <unordered_set>
+
+namespace otparam
+{
+namespace
+{
+
+// Barycentric coordinates of x in the counter-clockwise triangle abc.
+std::array<double, 3> barycentric(Vec2 x, Vec2 a, Vec2 b, Vec2 c)
+{
+  const double area = cross(b - a, c - a);
+  const double la = cross(b - x, c - x) / area;
+  const double lb = cross(c - x, a - x) / area;
+  return { la, lb, 1.0 - la - lb };
+}
+
+bool inside(Vec2 x, Vec2 a, Vec2 b, Vec2 c, double slack)
+{
+  const auto l = barycentric(x, a, b, c);
+  return l[0] >= -slack && l[1] >= -slack && l[2] >= -slack;
+}
+
+Vec2 closestOnSegment(Vec2 x, Vec2 a, Vec2 b)
+{
+  const Vec2 d = b - a;
+  const double t = std::clamp(dot(x - a, d) / dot(d, d), 0.0, 1.0);
+  return a + t * d;
+}
+} // namespace
+
+std::unique_ptr<DensityField> DensityField::create(const std::vector<Vec2>& points,
+  const std::vector<Triangle>& triangles, const std::vector<double>& perPoint,
+  const std::vector<double>& perTriangle, std::string& error)
+{
+  error.clear();
+  std::ostringstream msg;
+  if (points.empty() || triangles.empty())
+  {
+    error = "the domain has no triangles";
+    return nullptr;
+  }
+  if (perPoint.empty() == perTriangle.empty() ||
+    (!perPoint.empty() && perPoint.size() != points.size()) ||
+    (!perTriangle.empty() && perTriangle.size() != triangles.size()))
+  {
+    error = "the density needs exactly one value per point or one value per triangle";
+    return nullptr;
+  }
+  const std::vector<double>& values = perPoint.empty() ? perTriangle : perPoint;
+  const char* where = perPoint.empty() ? "triangle" : "point";
+  std::vector<size_t> bad;
+  bool anyPositive = false;
+  for (size_t i = 0; i < values.size(); ++i)
+  {
+    if (!std::isfinite(values[i]) || values[i] < 0.0)
+    {
+      bad.push_back(i);
+    }
+    anyPositive = anyPositive || values[i] > 0.0;
+  }
+  if (!bad.empty())
+  {
+    msg << "the density must be finite and non-negative, but it is " << values[bad.front()]
+        << " at " << where << " id(s) " << idList(bad);
+    error = msg.str();
+    return nullptr;
+  }
+  if (!anyPositive)
+  {
+    error = "the density is zero everywhere";
+    return nullptr;
+  }
+
+  std::unique_ptr<DensityField> field(new DensityField());
+  field->Points = points;
+  field->Triangles = triangles;
+  field->PerPoint = perPoint;
+  field->PerTriangle = perTriangle;
+  std::vector<char> used(points.size(), 0);
+  for (size_t t = 0; t < triangles.size(); ++t)
+  {
+    Triangle& tri = field->Triangles[t];
+    for (int v : tri)
+    {
+      if (v < 0 || static_cast<size_t>(v) >= points.size())
+      {
+        msg << "triangle " << t << " uses point id " << v << ", which does not exist";
+        error = msg.str();
+        return nullptr;
+      }
+      if (!std::isfinite(points[v].x) || !std::isfinite(points[v].y))
+      {
+        msg << "point " << v << " has a NaN or infinite coordinate";
+        error = msg.str();
+        return nullptr;
+      }
+      used[v] = 1;
+    }
+    double twice = cross(points[tri[1]] - points[tri[0]], points[tri[2]] - points[tri[0]]);
+    if (twice < 0.0)
+    {
+      std::swap(tri[1], tri[2]);
+      twice = -twice;
+    }
+    if (!(twice > 0.0))
+    {
+      msg << "triangle " << t << " has zero area";
+      error = msg.str();
+      return nullptr;
+    }
+    const double area = 0.5 * twice;
+    field->Integral += perPoint.empty()
+      ? area * perTriangle[t]
+      : area * (perPoint[tri[0]] + perPoint[tri[1]] + perPoint[tri[2]]) / 3.0;
+  }
+  // The domain is the density's support: triangles where it vanishes identically are left out,
+  // so that a density that is zero on parts of the input gives a domain with holes or several
+  // components, sampled (boundaries included) only where there is mass.
+  {
+    std::vector<Triangle> support;
+    std::vector<double> supportValues;
+    for (size_t t = 0; t < field->Triangles.size(); ++t)
+    {
+      const Triangle& tri = field->Triangles[t];
+      const bool zero = perPoint.empty()
+        ? perTriangle[t] == 0.0
+        : perPoint[tri[0]] == 0.0 && perPoint[tri[1]] == 0.0 && perPoint[tri[2]] == 0.0;
+      if (!zero)
+      {
+        support.push_back(tri);
+        if (!perTriangle.empty())
+        {
+          supportValues.push_back(perTriangle[t]);
+        }
+      }
+    }
+    field->Triangles = std::move(support);
+    if (!perTriangle.empty())
+    {
+      field->PerTriangle = std::move(supportValues);
+    }
+    std::fill(used.begin(), used.end(), 0);
+    for (const Triangle& tri : field->Triangles)
+    {
+      for (int v : tri)
+      {
+        used[v] = 1;
+      }
+      field->Area += 0.5 * cross(points[tri[1]] - points[tri[0]], points[tri[2]] - points[tri[0]]);
+    }
+  }
+  // Once every triangle is counter-clockwise, a tiling uses each directed edge at most once: a
+  // repeated one means overlapping triangles (which the area check below could miss when a
+  // hole has the same area).
+  {
+    std::vector<std::pair<std::pair<int, int>, size_t>> directed;
+    for (size_t t = 0; t < field->Triangles.size(); ++t)
+    {
+      const Triangle& tri = field->Triangles[t];
+      for (int k = 0; k < 3; ++k)
+      {
+        directed.push_back({ { tri[k], tri[(k + 1) % 3] }, t });
+      }
+    }
+    std::sort(directed.begin(), directed.end());
+    for (size_t e = 1; e < directed.size(); ++e)
+    {
+      if (directed[e].first == directed[e - 1].first)
+      {
+        msg << "triangles " << directed[e - 1].second << " and " << directed[e].second
+            << " overlap (both have the edge from point " << directed[e].first.first << " to point "
+            << directed[e].first.second << " on the same side)";
+        error = msg.str();
+        return nullptr;
+      }
+    }
+  }
+  if (!(field->Integral > 0.0))
+  {
+    error = "the density integrates to zero over the domain";
+    return nullptr;
+  }
+
+  using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+  using Traits =
+    CGAL::Convex_hull_traits_adapter_2<K, CGAL::Pointer_property_map<K::Point_2>::type>;
+  std::vector<K::Point_2> cgalPoints;
+  std::vector<std::size_t> usedIds, hull;
+  for (size_t i = 0; i < points.size(); ++i)
+  {
+    cgalPoints.emplace_back(points[i].x, points[i].y);
+    if (used[i])
+    {
+      usedIds.push_back(i);
+    }
+  }
+  CGAL::convex_hull_2(usedIds.begin(), usedIds.end(), std::back_inserter(hull),
+    Traits(CGAL::make_property_map(cgalPoints)));
+  double hullArea = 0.0;
+  for (size_t k = 0; k < hull.size(); ++k)
+  {
+    const Vec2 a = points[hull[k]], b = points[hull[(k + 1) % hull.size()]];
+    field->Hull.push_back(a);
+    field->HullIds.push_back(static_cast<int>(hull[k]));
+    hullArea += 0.5 * cross(a, b);
+  }
+  // Triangles that tile their convex hull exactly make a convex domain; anything else has holes,
+  // several components or concavities, and its boundary is made of the loops of edges that
+  // belong to one triangle only.
+  field->Convex = std::abs(hullArea - field->Area) <= 1e-9 * hullArea;
+  if (field->Convex)
+  {
+    field->Loops = { field->Hull };
+  }
+  else if (!field->traceBoundaryLoops(error))
+  {
+    return nullptr;
+  }
+  field->UnitDisk = field->Convex;
+  for (const Vec2& p : field->Hull)
+  {
+    // 1e-6: a disk whose points were stored in single precision (VTK's default) is still one.
+    field->UnitDisk = field->UnitDisk && std::abs(norm(p) - 1.0) <= 1e-6;
+  }
+
+  std::vector<BoxTree::Item> triangleBoxes(field->Triangles.size());
+  for (size_t t = 0; t < field->Triangles.size(); ++t)
+  {
+    const Triangle& tri = field->Triangles[t];
+    BoxTree::Item& box = triangleBoxes[t];
+    box.lo = box.hi = points[tri[0]];
+    for (int v : tri)
+    {
+      box.lo = { std::min(box.lo.x, points[v].x), std::min(box.lo.y, points[v].y) };
+      box.hi = { std::max(box.hi.x, points[v].x), std::max(box.hi.y, points[v].y) };
+    }
+    box.value = field->PerTriangle.empty() ? 0.0 : field->PerTriangle[t];
+  }
+  field->TriangleTree = BoxTree(std::move(triangleBoxes));
+  if (field->PerTriangle.empty())
+  {
+    std::vector<BoxTree::Item> pointBoxes;
+    field->PointTreeIds.clear();
+    for (size_t i = 0; i < points.size(); ++i)
+    {
+      if (used[i])
+      {
+        pointBoxes.push_back({ points[i], points[i], field->PerPoint[i] });
+        field->PointTreeIds.push_back(static_cast<int>(i));
+      }
+    }
+    field->PointTree = BoxTree(std::move(pointBoxes));
+  }
+  return field;
+}
+
+int DensityField::locate(Vec2 x) const
+{
+  for (double slack : { 1e-12, 1e-9 })
+  {
+    int found = -1;
+    TriangleTree.findContaining(x,
+      [&](int t)
+      {
+        const Triangle& tri = Triangles[t];
+        if (inside(x, Points[tri[0]], Points[tri[1]], Points[tri[2]], slack))
+        {
+          found = t;
+          return true;
+        }
+        return false;
+      });
+    if (found >= 0)
+    {
+      return found;
+    }
+  }
+  return -1;
+}
+
+bool DensityField::traceBoundaryLoops(std::string& error)
+{
+  // Directed edges of counter-clockwise triangles whose twin is absent: the outer boundaries
+  // run counter-clockwise, the holes clockwise.
+  std::vector<std::pair<int, int>> directed;
+  for (const Triangle& tri : Triangles)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      directed.emplace_back(tri[k], tri[(k + 1) % 3]);
+    }
+  }
+  std::sort(directed.begin(), directed.end());
+  std::unordered_map<int, int> next; // boundary vertex -> the next one along its loop
+  for (const auto& [from, to] : directed)
+  {
+    if (std::binary_search(directed.begin(), directed.end(), std::make_pair(to, from)))
+    {
+      continue;
+    }
+    if (!next.emplace(from, to).second)
+    {
+      std::ostringstream msg;
+      msg << "the domain's boundary touches itself at point " << from
+          << " (two boundary loops or components meet in one point); separate them";
+      error = msg.str();
+      return false;
+    }
+  }
+  std::unordered_set<int> done;
+  for (const auto& start : next)
+  {
+    if (done.count(start.first))
+    {
+      continue;
+    }
+    std::vector<Vec2> loop;
+    int v = start.first;
+    do
+    {
+      done.insert(v);
+      loop.push_back(Points[v]);
+      const auto it = next.find(v);
+      if (it == next.end())
+      {
+        error = "the domain's boundary is not made of closed loops (inconsistent triangles)";
+        return false;
+      }
+      v = it->second;
+    } while (v != start.first && loop.size() <= next.size());
+    Loops.push_back(std::move(loop));
+  }
+  // A fixed order (the map's is not): the loop with the lowest first point first.
+  std::sort(Loops.begin(), Loops.end(),
+    [](const std::vector<Vec2>& a, const std::vector<Vec2>& b) {
+      return a.front().x < b.front().x || (a.front().x == b.front().x && a.front().y < b.front().y);
+    });
+  return true;
+}
+
+Vec2 DensityField::nearestBoundaryPoint(Vec2 x) const
+{
+  Vec2 best = Hull.front();
+  double bestDistance = std::numeric_limits<double>::infinity();
+  for (const std::vector<Vec2>& loop : Loops)
+  {
+    for (size_t k = 0; k < loop.size(); ++k)
+    {
+      const Vec2 p = closestOnSegment(x, loop[k], loop[(k + 1) % loop.size()]);
+      const double d = norm(p - x);
+      if (d < bestDistance)
+      {
+        bestDistance = d;
+        best = p;
+      }
+    }
+  }
+  return best;
+}
+
+bool DensityField::contains(Vec2 x) const
+{
+  return locate(x) >= 0;
+}
+
+double DensityField::value(Vec2 x) const
+{
+  int t = locate(x);
+  if (t < 0)
+  {
+    // Outside (e.g. between the inscribed polygon and the circle): use the nearest boundary
+    // point of the domain.
+    x = nearestBoundaryPoint(x);
+    t = locate(x);
+    if (t < 0)
+    {
+      return 0.0; // unreachable for a tiling; keeps the caller well-defined
+    }
+  }
+  if (!PerTriangle.empty())
+  {
+    return PerTriangle[t];
+  }
+  const Triangle& tri = Triangles[t];
+  const auto l = barycentric(x, Points[tri[0]], Points[tri[1]], Points[tri[2]]);
+  return std::max(0.0, l[0] * PerPoint[tri[0]] + l[1] * PerPoint[tri[1]] + l[2] * PerPoint[tri[2]]);
+}
+
+double DensityField::maxInsideTriangle(Vec2 a, Vec2 b, Vec2 c) const
+{
+  if (cross(b - a, c - a) < 0.0)
+  {
+    std::swap(b, c);
+  }
+  double largest = value((1.0 / 3.0) * (a + b + c));
+  const Vec2 lo = { std::min({ a.x, b.x, c.x }), std::min({ a.y, b.y, c.y }) };
+  const Vec2 hi = { std::max({ a.x, b.x, c.x }), std::max({ a.y, b.y, c.y }) };
+  if (PerTriangle.empty())
+  {
+    PointTree.maximize(lo, hi, largest,
+      [&](int item, double& best)
+      {
+        if (inside(Points[PointTreeIds[item]], a, b, c, 0.0))
+        {
+          best = PerPoint[PointTreeIds[item]];
+        }
+      });
+  }
+  else
+  {
+    TriangleTree.maximize(lo, hi, largest,
+      [&](int t, double& best)
+      {
+        const Triangle& tri = Triangles[t];
+        if (inside((1.0 / 3.0) * (Points[tri[0]] + Points[tri[1]] + Points[tri[2]]), a, b, c, 0.0))
+        {
+          best = PerTriangle[t];
+        }
+      });
+  }
+  return largest;
+}
+
+std::unique_ptr<SourceMeasure> DensityField::makeSource(std::string& error, double power) const
+{
+  // Every triangle gets its own three points (piecewise-constant densities need that; for
+  // piecewise-linear ones it costs memory only).
+  std::vector<Vec2> points;
+  std::vector<Triangle> triangles;
+  std::vector<double> density;
+  points.reserve(3 * Triangles.size());
+  density.reserve(3 * Triangles.size());
+  auto add = [&](Vec2 a, Vec2 b, Vec2 c, double fa, double fb, double fc)
+  {
+    const int first = static_cast<int>(points.size());
+    points.insert(points.end(), { a, b, c });
+    density.insert(
+      density.end(), { std::pow(fa, power), std::pow(fb, power), std::pow(fc, power) });
+    triangles.push_back({ first, first + 1, first + 2 });
+  };
+  std::vector<double> hullValue(Hull.size());
+  for (size_t t = 0; t < Triangles.size(); ++t)
+  {
+    const Triangle& tri = Triangles[t];
+    if (PerTriangle.empty())
+    {
+      add(Points[tri[0]], Points[tri[1]], Points[tri[2]], PerPoint[tri[0]], PerPoint[tri[1]],
+        PerPoint[tri[2]]);
+    }
+    else
+    {
+      add(Points[tri[0]], Points[tri[1]], Points[tri[2]], PerTriangle[t], PerTriangle[t],
+        PerTriangle[t]);
+    }
+  }
+  if (UnitDisk)
+  {
+    for (size_t k = 0; k < Hull.size(); ++k)
+    {
+      const size_t next = (k + 1) % Hull.size();
+      const Vec2 a = Hull[k], b = Hull[next];
+      const double fa = value(a), fb = value(b);
+      // Where the tangents at a and b meet (p.a = |a|^2, p.b = |b|^2: exact also for points
+      // stored in single precision, whose radii differ from 1 by ~1e-7).
+      const double det = cross(a, b);
+      const Vec2 apex = { (dot(a, a) * b.y - dot(b, b) * a.y) / det,
+        (dot(b, b) * a.x - dot(a, a) * b.x) / det };
+      add(a, apex, b, fa, 0.5 * (fa + fb), fb);
+    }
+  }
+  return makeTriangulatedSource(points, triangles, density, error, true, !Convex);
+}
+
+} // namespace otparam

@@ -1,0 +1,86 @@
+// A density on a planar triangulated domain: piecewise linear (one value per point) or
+// piecewise constant (one value per triangle), with point queries, the largest value over a
+// triangle, and the domain's shape (the unit disk, or a convex polygon).
+#ifndef OTPARAM_SAMPLING_PLANARDENSITYFIELD_H
+#define OTPARAM_SAMPLING_PLANARDENSITYFIELD_H
+
+#include "Common/BoxTree.h"
+#include "Common/Geometry.h"
+#include "Transport/PlanarSource.h"
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace otparam
+{
+
+class DensityField
+{
+public:
+  // perPoint: one value per point (piecewise linear), or perTriangle: one per triangle
+  // (piecewise constant); exactly one of the two is non-empty. Values must be finite and >= 0,
+  // not all zero. The domain is the support: the triangles where the density is not identically
+  // zero. They must not overlap; the domain may be non-convex, have holes and several
+  // components, as long as its boundary loops do not touch. Returns nullptr and sets error
+  // otherwise (the message names the offending ids).
+  static std::unique_ptr<DensityField> create(const std::vector<Vec2>& points,
+    const std::vector<Triangle>& triangles, const std::vector<double>& perPoint,
+    const std::vector<double>& perTriangle, std::string& error);
+
+  // Density at x (x outside the domain: the value at the nearest point of the domain).
+  double value(Vec2 x) const;
+  // Largest density over the triangle abc at its centroid and every input point inside it (a
+  // piecewise-linear density peaks at input points, which a coarse triangle's corners and
+  // centre would miss); the caller adds the corners, whose values it usually knows already.
+  double maxInsideTriangle(Vec2 a, Vec2 b, Vec2 c) const;
+  double integral() const { return Integral; }
+  double area() const { return Area; }
+
+  // The corners of the domain's convex hull, counter-clockwise.
+  const std::vector<Vec2>& boundary() const { return Hull; }
+  // True when the domain is its convex hull (one convex component).
+  bool isConvex() const { return Convex; }
+  // The domain's boundary loops (the hull alone for a convex domain): outer boundaries
+  // counter-clockwise, holes clockwise, so the domain is always on the left.
+  const std::vector<std::vector<Vec2>>& boundaryLoops() const { return Loops; }
+  // True when x lies in one of the domain's triangles (up to rounding).
+  bool contains(Vec2 x) const;
+  // The point of the domain's boundary loops nearest to x.
+  Vec2 nearestBoundaryPoint(Vec2 x) const;
+  // True when every boundary point of the input lies on the unit circle (to 1e-6): the domain
+  // is then treated as the unit disk (boundary samples on the circle, source mass pi).
+  bool isUnitDisk() const { return UnitDisk; }
+
+  const std::vector<Vec2>& points() const { return Points; }
+  const std::vector<Triangle>& triangles() const { return Triangles; }
+
+  // The density raised to `power` as a source measure (exact integrals over cells clipped to the
+  // domain for power 1; the power-th power of the values interpolated the same way otherwise).
+  // For the unit disk the domain is the inscribed polygon plus a cap triangle on every boundary
+  // edge (tangents' intersection as apex), so that a sample on the circle always has a cell of
+  // positive measure, with the density of its edge's ends.
+  std::unique_ptr<SourceMeasure> makeSource(std::string& error, double power = 1.0) const;
+
+private:
+  DensityField() = default;
+  int locate(Vec2 x) const; // triangle containing x, or -1
+  bool traceBoundaryLoops(std::string& error);
+
+  std::vector<Vec2> Points;
+  std::vector<Triangle> Triangles; // counter-clockwise
+  std::vector<double> PerPoint, PerTriangle;
+  std::vector<Vec2> Hull;
+  std::vector<int> HullIds; // input point id of each hull corner
+  std::vector<std::vector<Vec2>> Loops;
+  bool Convex = true;
+  bool UnitDisk = false;
+  double Integral = 0.0, Area = 0.0;
+  BoxTree TriangleTree;          // item = triangle, value = PerTriangle (0 if per point)
+  BoxTree PointTree;             // per-point densities only: item = used point
+  std::vector<int> PointTreeIds; // point id of each PointTree item
+};
+
+} // namespace otparam
+
+#endif

@@ -1,0 +1,129 @@
+// The power diagram of weighted Diracs, from CGAL's regular triangulation (exact predicates).
+// CGAL stays inside PowerDiagram.cxx; callers see adjacency and convex cells only.
+#ifndef OTPARAM_TRANSPORT_PLANARPOWERDIAGRAM_H
+#define OTPARAM_TRANSPORT_PLANARPOWERDIAGRAM_H
+
+#include "Common/Geometry.h"
+#include "Transport/PlanarSource.h"
+
+#include <memory>
+#include <vector>
+
+namespace otparam
+{
+
+// Heights carry more precision than the coordinates. A cell edge between Diracs at distance
+// delta moves by (error of h_i - h_j) / delta, and a small cell's mass by its perimeter times
+// that. Doubles would pin the tiny cells of Diracs 1e-4 apart to ~1e-9 relative error; long
+// doubles still fell short: at 1e5 Diracs of contrast 1e6, a cell of mass 5.2e-10 by the circle
+// needed a Newton correction of 4.4e-21 to its height 1.17, below the long double spacing there
+// (1.1e-19), and the solve stopped at 1.9e-10. So a height is an unevaluated sum of two long
+// doubles (~128 bits), updated with error-free sums; what the diagram reads are differences of
+// neighbours' heights, which keep their full precision when rounded to long double.
+class Height
+{
+public:
+  Height() = default;
+  Height(long double value)
+    : High(value)
+  {
+  }
+  long double value() const { return High + Low; }
+
+  friend Height operator+(const Height& h, long double step)
+  {
+    // Knuth's two-sum, then a renormalization (Dekker's fast two-sum).
+    const long double sum = h.High + step;
+    const long double stepPart = sum - h.High;
+    const long double error = (h.High - (sum - stepPart)) + (step - stepPart);
+    const long double low = h.Low + error;
+    Height out;
+    out.High = sum + low;
+    out.Low = low - (out.High - sum);
+    return out;
+  }
+  friend Height operator-(const Height& h, long double step) { return h + (-step); }
+  Height& operator+=(long double step) { return *this = *this + step; }
+  Height& operator-=(long double step) { return *this = *this + (-step); }
+  friend long double operator-(const Height& a, const Height& b)
+  {
+    return (a.High - b.High) + (a.Low - b.Low);
+  }
+  friend bool operator<(const Height& a, const Height& b) { return a - b < 0.0L; }
+  friend bool operator>(const Height& a, const Height& b) { return b < a; }
+
+private:
+  long double High = 0.0L, Low = 0.0L;
+};
+
+class PowerDiagram
+{
+public:
+  PowerDiagram();
+  ~PowerDiagram();
+  PowerDiagram(PowerDiagram&&) noexcept;
+  PowerDiagram& operator=(PowerDiagram&&) noexcept;
+
+  // Cells W_i = {x : <x, y_i> - h_i >= <x, y_j> - h_j for all j}: the power diagram of y_i with
+  // weights |y_i|^2 - 2 h_i.
+  // What a build does when Diracs are hidden. A Newton trial that hides a Dirac is rejected
+  // anyway, and what a whole diagram costs beyond finding one would be wasted: a new insertion
+  // (the kept triangulation's flips stop at hidden Diracs), the power vertices and the rings.
+  enum class WhenHidden
+  {
+    FindAll,    // the whole diagram, every hidden Dirac with its hiddenFace()
+    ReportSome, // no cells; hidden() and hiddenFace() for the Diracs found certainly hidden
+    StopAtFirst // no cells; hidden() for the first Dirac found certainly hidden
+  };
+  void build(const std::vector<Vec2>& diracs, const std::vector<Height>& heights,
+    WhenHidden whenHidden = WhenHidden::FindAll);
+
+  // Moves the other diagram's kept triangulation here (the other keeps its cells), so that the
+  // next build of this one flips it: a Newton trial starts from the accepted diagram's
+  // triangulation, and only one triangulation is alive per solve (1e6 Diracs: ~200 MiB each).
+  void takeTriangulationFrom(PowerDiagram& other);
+
+  int size() const { return static_cast<int>(Sites.size()); }
+  // A hidden Dirac has an empty cell in the whole plane.
+  bool hidden(int i) const { return Hidden[i] != 0; }
+  int hiddenCount() const { return HiddenCount; }
+  // The finite face of the regular triangulation that contains a hidden Dirac's point (its
+  // lifted point lies above that face's plane); {-1, -1, -1} when there is none.
+  Triangle hiddenFace(int i) const { return HiddenFace[i]; }
+  // Neighbours of Dirac i in the regular triangulation (one per power edge in the plane;
+  // -1 stands for the infinite vertex around hull Diracs).
+  const int* neighborsBegin(int i) const { return Adjacency.data() + Offsets[i]; }
+  const int* neighborsEnd(int i) const { return Adjacency.data() + Offsets[i + 1]; }
+  // Cell of Dirac i as a convex polygon (empty when hidden). Its parts outside the box [lo, hi],
+  // which must contain the domain, are replaced by edges labelled -1 that stay outside the box.
+  // Thread-safe.
+  void cell(int i, Vec2 lo, Vec2 hi, PowerCell& out) const;
+  // Finite faces of the regular (weighted Delaunay) triangulation, counter-clockwise.
+  const std::vector<Triangle>& triangles() const { return Triangles; }
+
+private:
+  // The power vertex rounded to double, and what the rounding left out.
+  void powerVertex(int a, int b, int c, Vec2& rounded, Vec2& correction) const;
+  void ringCell(int i, Vec2 lo, Vec2 hi, PowerCell& out) const;
+  void clearCells(int n);
+
+  // The last regular triangulation: a build for the same Diracs under new heights flips it
+  // (a Newton step changes few edges) instead of inserting every Dirac again.
+  struct Triangulation;
+  std::unique_ptr<Triangulation> Kept;
+  int Dimension = 0;
+  std::vector<Vec2> PowerVertices; // one per finite face (weighted circumcentre)
+  std::vector<Vec2> PowerVertexCorrections;
+  std::vector<int> RingFace; // faces around each Dirac, CCW (-1: infinite), rows as Adjacency
+  std::vector<Vec2> Sites;
+  std::vector<Height> Heights;
+  std::vector<int> Offsets, Adjacency;
+  std::vector<char> Hidden;
+  std::vector<Triangle> HiddenFace;
+  std::vector<Triangle> Triangles;
+  int HiddenCount = 0;
+};
+
+} // namespace otparam
+
+#endif

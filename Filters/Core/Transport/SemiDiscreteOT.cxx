@@ -1,0 +1,1005 @@
+#include "Transport/SemiDiscreteOT.h"
+
+#include "Transport/MultiscaleStart.h"
+#include "Transport/PlanarPowerDiagram.h"
+#include "Common/SparseCholesky.h"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Hilbert_sort_2.h>
+#include <CGAL/Spatial_sort_traits_adapter_2.h>
+#include <CGAL/property_map.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <numeric>
+#include <sstream>
+
+namespace otparam
+{
+namespace
+{
+using Clock = std::chrono::steady_clock;
+double secondsSince(Clock::time_point t0)
+{
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+struct Evaluation
+{
+  std::vector<double> cellMass;
+  std::vector<Vec2> moment;
+  // Hessian coefficients mu(W_i ∩ W_j) / |y_i - y_j| for neighbouring cells, i < j.
+  std::vector<Eigen::Triplet<double>> coupling;
+  double minMass = 0.0;
+  int emptyCells = 0;
+};
+
+// The source box, a little larger so that its edges never touch the domain.
+void sourceBox(const SourceMeasure& source, Vec2& lo, Vec2& hi)
+{
+  source.bounds(lo, hi);
+  const double margin = 0.01 * std::max(hi.x - lo.x, hi.y - lo.y) + 1e-12;
+  lo = lo - Vec2{ margin, margin };
+  hi = hi + Vec2{ margin, margin };
+}
+
+// Cell masses, moments and (withCouplings) Hessian couplings at the given heights. Unless
+// whenHidden is FindAll, a hidden Dirac (empty cell) ends the evaluation early with all masses
+// 0: a Newton trial is then rejected anyway, without paying for the integration.
+void evaluate(const SourceMeasure& source, const std::vector<Vec2>& diracs,
+  const std::vector<Height>& heights, PowerDiagram& diagram, Evaluation& ev, OTResult& timing,
+  PowerDiagram::WhenHidden whenHidden = PowerDiagram::WhenHidden::StopAtFirst,
+  bool withCouplings = true)
+{
+  const int n = static_cast<int>(diracs.size());
+  auto t0 = Clock::now();
+  diagram.build(diracs, heights, whenHidden);
+  timing.secondsTriangulation += secondsSince(t0);
+  if (whenHidden != PowerDiagram::WhenHidden::FindAll && diagram.hiddenCount() > 0)
+  {
+    ev.cellMass.assign(n, 0.0);
+    ev.moment.assign(n, Vec2{});
+    ev.coupling.clear();
+    ev.minMass = 0.0;
+    ev.emptyCells = diagram.hiddenCount();
+    return;
+  }
+
+  t0 = Clock::now();
+  Vec2 lo, hi;
+  sourceBox(source, lo, hi);
+  ev.cellMass.assign(n, 0.0);
+  ev.moment.assign(n, Vec2{});
+  ev.coupling.clear();
+#pragma omp parallel
+  {
+    PowerCell cell;
+    CellIntegrals integrals;
+    integrals.wantEdgeMass = withCouplings;
+    std::vector<Eigen::Triplet<double>> local;
+#pragma omp for schedule(dynamic, 512) nowait
+    for (int i = 0; i < n; ++i)
+    {
+      diagram.cell(i, lo, hi, cell);
+      if (cell.vertices.empty())
+      {
+        continue;
+      }
+      source.integrate(cell, integrals);
+      ev.cellMass[i] = integrals.mass;
+      ev.moment[i] = integrals.moment;
+      for (const auto& em : integrals.edgeMass)
+      {
+        const int j = em.first;
+        if (j > i && em.second > 0.0)
+        {
+          local.emplace_back(i, j, em.second / norm(diracs[i] - diracs[j]));
+        }
+      }
+    }
+#pragma omp critical
+    ev.coupling.insert(ev.coupling.end(), local.begin(), local.end());
+  }
+  // Threads append their couplings in whatever order they finish: put them in row order (each
+  // row's own order is fixed; a stable counting sort), so that the Newton system, and the whole
+  // run, is the same every time. Without it the rounding of the Hessian's sums varied from run
+  // to run, and so did the iterates' last digits: a run could end near the tolerance one time
+  // and not the next, which made a failure found by the benchmark impossible to reproduce.
+  if (withCouplings)
+  {
+    std::vector<int> rowStart(n + 1, 0);
+    for (const auto& c : ev.coupling)
+    {
+      ++rowStart[c.row() + 1];
+    }
+    std::partial_sum(rowStart.begin(), rowStart.end(), rowStart.begin());
+    std::vector<Eigen::Triplet<double>> inRowOrder(ev.coupling.size());
+    for (const auto& c : ev.coupling)
+    {
+      inRowOrder[rowStart[c.row()]++] = c;
+    }
+    ev.coupling.swap(inRowOrder);
+  }
+  ev.minMass = n ? *std::min_element(ev.cellMass.begin(), ev.cellMass.end()) : 0.0;
+  ev.emptyCells = static_cast<int>(std::count(ev.cellMass.begin(), ev.cellMass.end(), 0.0));
+  timing.secondsIntegration += secondsSince(t0);
+}
+
+// Diagonal of the Newton Hessian: the sum of each Dirac's couplings.
+std::vector<double> hessianDiagonal(int n, const std::vector<Eigen::Triplet<double>>& coupling)
+{
+  std::vector<double> diagonal(n, 0.0);
+  for (const auto& c : coupling)
+  {
+    diagonal[c.row()] += c.value();
+    diagonal[c.col()] += c.value();
+  }
+  return diagonal;
+}
+
+// True when the trial heights certainly hide a Dirac, found without a triangulation: Dirac i is
+// hidden when its lifted point (y_i, h_i) lies above the plane through the lifted points of
+// three others whose triangle contains y_i (it is then not a vertex of the lower hull). The
+// triangles tried are a fan of i's neighbours in the current diagram, where a trial step that
+// empties a cell nearly always does so. Inexact arithmetic: a margin far above the rounding of
+// the test keeps every certificate true; a missed one only costs the triangulation.
+bool certainlyHidesADirac(
+  const PowerDiagram& current, const std::vector<Vec2>& diracs, const std::vector<Height>& trial)
+{
+  const int n = current.size();
+  int found = 0;
+#pragma omp parallel for schedule(static) reduction(+ : found)
+  for (int i = 0; i < n; ++i)
+  {
+    if (found > 0 || current.hidden(i))
+    {
+      continue;
+    }
+    const int* begin = current.neighborsBegin(i);
+    const int* end = current.neighborsEnd(i);
+    const int degree = static_cast<int>(end - begin);
+    if (degree < 3 || std::find(begin, end, -1) != end)
+    {
+      continue; // hull Diracs: their cells reach infinity
+    }
+    const Vec2 yi = diracs[i];
+    // One fan, from the first neighbour: all fans found 32 of the 83 trials at 3e4 Diracs
+    // (contrast 1e4) and this one 27, at a third of the cost (0.37 s instead of 1.17 s).
+    const int a = begin[0];
+    const Vec2 pa = diracs[a];
+    for (int m = 1; m + 1 < degree; ++m)
+    {
+      const int b = begin[m], c = begin[m + 1];
+      const Vec2 pb = diracs[b], pc = diracs[c];
+      const double area = cross(pb - pa, pc - pa);
+      // Thin triangles are skipped: their barycentric coordinates lose too many digits.
+      if (!(area > 1e-6 * (dot(pb - pa, pb - pa) + dot(pc - pa, pc - pa))))
+      {
+        continue;
+      }
+      const double la = cross(pb - yi, pc - yi) / area;
+      const double lb = cross(pc - yi, pa - yi) / area;
+      const double lc = 1.0 - la - lb;
+      if (la < 0.0 || lb < 0.0 || lc < 0.0)
+      {
+        continue;
+      }
+      // Height of i above the plane, from differences (neighbours' heights are close).
+      const long double above =
+        -(la * (trial[a] - trial[i]) + lb * (trial[b] - trial[i]) + lc * (trial[c] - trial[i]));
+      const long double scale = std::abs(trial[a].value()) + std::abs(trial[b].value()) +
+        std::abs(trial[c].value()) + std::abs(trial[i].value()) + 1.0L;
+      if (above > 1e-9L * scale)
+      {
+        ++found;
+        break;
+      }
+    }
+  }
+  return found > 0;
+}
+
+double relativeError(const std::vector<double>& cellMass, const std::vector<double>& mass)
+{
+  double err = 0.0;
+  for (size_t i = 0; i < mass.size(); ++i)
+  {
+    err = std::max(err, std::abs(cellMass[i] - mass[i]) / mass[i]);
+  }
+  return err;
+}
+
+double gradientNorm(const std::vector<double>& cellMass, const std::vector<double>& mass)
+{
+  double s = 0.0;
+  for (size_t i = 0; i < mass.size(); ++i)
+  {
+    const double g = cellMass[i] - mass[i];
+    s += g * g;
+  }
+  return std::sqrt(s);
+}
+
+// Sparse SPD solve of the graph Laplacian L d = g with one height pinned (the gauge). The
+// pinned cell absorbs the rounding of sum(cellMass) = total, so it must be the largest one.
+class NewtonSystem
+{
+public:
+  explicit NewtonSystem(int pinned)
+    : Pinned(pinned)
+  {
+  }
+
+  // When the conjugate gradients may stop: their residual r = g - H d has |r|_2 <= relative
+  // |g|_2, or max_i |r_i| / nu_i <= perMass (0: not used). The second bounds directly what
+  // the residual adds to the next relative mass error. (A new factorization, when needed,
+  // solves exactly.)
+  struct ResidualTarget
+  {
+    double relative;
+    double perMass;
+  };
+
+  // Returns false when the factorization fails.
+  bool solve(int n, const std::vector<Eigen::Triplet<double>>& coupling,
+    const std::vector<double>& g, const std::vector<double>& nu, std::vector<double>& d,
+    ResidualTarget target, OTResult& timing)
+  {
+    auto t0 = Clock::now();
+    const int m = n - 1;
+    auto row = [this](int i) { return i < Pinned ? i : i - 1; };
+    std::vector<Eigen::Triplet<double>> entries;
+    entries.reserve(coupling.size() + n);
+    const std::vector<double> diagonal = hessianDiagonal(n, coupling);
+    for (const auto& c : coupling)
+    {
+      if (c.row() != Pinned && c.col() != Pinned)
+      {
+        // Lower triangle only: both factorizations read one triangle.
+        const int a = row(c.row()), b = row(c.col());
+        entries.emplace_back(std::max(a, b), std::min(a, b), -c.value());
+      }
+    }
+    Eigen::VectorXd rhs(m), inverseMass(m);
+    for (int i = 0; i < n; ++i)
+    {
+      if (i != Pinned)
+      {
+        entries.emplace_back(row(i), row(i), diagonal[i]);
+        rhs[row(i)] = g[i];
+        inverseMass[row(i)] = 1.0 / nu[i];
+      }
+    }
+    Eigen::SparseMatrix<double> L(m, m);
+    L.setFromTriplets(entries.begin(), entries.end());
+    timing.secondsAssembly += secondsSince(t0);
+
+    t0 = Clock::now();
+    // Consecutive Newton Hessians differ little (same Diracs, nearby heights), so the last
+    // factorization preconditions conjugate gradients; a new factorization (~3.5 s at 1e6
+    // Diracs) is made only when that does not converge quickly, or when it barely did last
+    // time: the Hessians drift further from the factorized one with every step (1e6 Diracs: a
+    // run of 14 iterations was followed by one that failed after 14, 2 s lost).
+    Eigen::VectorXd x;
+    bool ok = HaveFactor && Factor.size() == m && LastCGIterations <= StaleFactorCGIterations &&
+      preconditionedCG(L, rhs, inverseMass, target, x);
+    if (!ok)
+    {
+      LastCGIterations = 0;
+      ok = Factor.compute(L);
+      HaveFactor = ok;
+      if (ok)
+      {
+        x = Factor.solve(rhs);
+        x += Factor.solve(rhs - L.selfadjointView<Eigen::Lower>() * x); // one refinement step
+      }
+    }
+    timing.secondsSolve += secondsSince(t0);
+    if (!ok || !x.allFinite())
+    {
+      return false;
+    }
+    d.assign(n, 0.0);
+    for (int i = 0; i < n; ++i)
+    {
+      if (i != Pinned)
+      {
+        d[i] = x[row(i)];
+      }
+    }
+    return true;
+  }
+
+private:
+  using SparseMatrix = Eigen::SparseMatrix<double>;
+
+  bool preconditionedCG(const SparseMatrix& L, const Eigen::VectorXd& b,
+    const Eigen::VectorXd& inverseMass, ResidualTarget target, Eigen::VectorXd& x)
+  {
+    const double bnorm = b.norm();
+    if (bnorm == 0.0)
+    {
+      x.setZero(b.size());
+      return true;
+    }
+    // How far the residual is from its target (done at <= 1).
+    auto distance = [&](const Eigen::VectorXd& r)
+    {
+      double ratio = r.norm() / (target.relative * bnorm);
+      if (target.perMass > 0.0)
+      {
+        ratio =
+          std::min(ratio, r.cwiseProduct(inverseMass).lpNorm<Eigen::Infinity>() / target.perMass);
+      }
+      return ratio;
+    };
+    const auto A = L.selfadjointView<Eigen::Lower>();
+    x = Factor.solve(b);
+    Eigen::VectorXd r = b - A * x;
+    Eigen::VectorXd z = Factor.solve(r);
+    Eigen::VectorXd p = z;
+    double rz = r.dot(z);
+    const double firstDistance = distance(r);
+    for (int k = 0; k < MaximumCGIterations; ++k)
+    {
+      const double current = distance(r);
+      if (current <= 1.0)
+      {
+        LastCGIterations = k;
+        return x.allFinite();
+      }
+      // The residual falls about geometrically: once its rate so far puts the target well
+      // beyond MaximumCGIterations, factorizing at once saves the remaining iterations (1e6
+      // Diracs: 0.14 s each; a failed run of 15 costs 2 s).
+      if (k >= 4 && current < firstDistance &&
+        k + std::log(1.0 / current) / (std::log(current / firstDistance) / k) >
+          1.5 * MaximumCGIterations)
+      {
+        return false;
+      }
+      const Eigen::VectorXd Ap = A * p;
+      const double alpha = rz / p.dot(Ap);
+      x += alpha * p;
+      r -= alpha * Ap;
+      z = Factor.solve(r);
+      const double rzNext = r.dot(z);
+      p = z + (rzNext / rz) * p;
+      rz = rzNext;
+    }
+    LastCGIterations = MaximumCGIterations;
+    return distance(r) <= 1.0 && x.allFinite();
+  }
+
+  static constexpr int MaximumCGIterations = 15;
+  static constexpr int StaleFactorCGIterations = 10;
+  int LastCGIterations = 0;
+  int Pinned;
+  bool HaveFactor = false;
+  SparseCholesky Factor;
+};
+
+} // namespace
+
+std::string validateDiracs(const std::vector<Vec2>& diracs, const std::vector<double>& masses)
+{
+  std::ostringstream msg;
+  if (diracs.empty())
+  {
+    return "there are no Diracs (the target has no points)";
+  }
+  if (masses.size() != diracs.size())
+  {
+    msg << "there are " << diracs.size() << " Diracs but " << masses.size() << " masses";
+    return msg.str();
+  }
+  auto listIds = [&](const char* what, const std::vector<size_t>& ids)
+  {
+    msg << ids.size() << " Dirac(s) " << what << " (point ids";
+    for (size_t k = 0; k < std::min<size_t>(ids.size(), 10); ++k)
+    {
+      msg << ' ' << ids[k];
+    }
+    msg << (ids.size() > 10 ? " ...)" : ")");
+  };
+  std::vector<size_t> bad;
+  for (size_t i = 0; i < diracs.size(); ++i)
+  {
+    if (!std::isfinite(diracs[i].x) || !std::isfinite(diracs[i].y))
+    {
+      bad.push_back(i);
+    }
+  }
+  if (!bad.empty())
+  {
+    listIds("have NaN or infinite coordinates", bad);
+    return msg.str();
+  }
+  for (size_t i = 0; i < masses.size(); ++i)
+  {
+    if (!(std::isfinite(masses[i]) && masses[i] > 0.0))
+    {
+      bad.push_back(i);
+    }
+  }
+  if (!bad.empty())
+  {
+    listIds("have a Mass that is not finite and positive", bad);
+    return msg.str();
+  }
+  std::vector<size_t> order(diracs.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(),
+    [&](size_t a, size_t b) {
+      return diracs[a].x < diracs[b].x || (diracs[a].x == diracs[b].x && diracs[a].y < diracs[b].y);
+    });
+  for (size_t k = 1; k < order.size(); ++k)
+  {
+    const Vec2 a = diracs[order[k - 1]], b = diracs[order[k]];
+    if (a.x == b.x && a.y == b.y)
+    {
+      bad.push_back(std::min(order[k - 1], order[k]));
+      bad.push_back(std::max(order[k - 1], order[k]));
+    }
+  }
+  if (!bad.empty())
+  {
+    listIds("share their position with another Dirac", bad);
+    return msg.str();
+  }
+  return std::string();
+}
+
+namespace
+{
+// Start heights: the Voronoi diagram of the Diracs when it already solves the problem, or when
+// every cell meets the domain and the masses differ by at most MildContrast. Otherwise the
+// Voronoi diagram of the Diracs mapped by a similarity z = c + s (y - c) that makes them fill
+// 90% of a disk inside the domain: its cells are the power cells of y with
+// h_i = |z_i|^2 / (2 s), since <x, y_i> - h_i = (<x, z_i> - |z_i|^2 / 2) / s + terms common to
+// all i. Besides giving a cell to Diracs outside the domain, this keeps the Diracs next to the
+// boundary from starting as thin caps, which full Newton steps push out of the domain when
+// their masses must shrink a lot. Measured, Newton iterations from the Voronoi / the shrunk
+// start, 1e4 random Diracs in the disk: contrast 10: 6 / 8; 100: 16 / 12; 1e3: 72 / 18;
+// 1e4: 84 / 28 (3e4 Diracs: 119 / 30).
+constexpr double MildContrast = 30.0;
+
+// Newton's first steps from a start with cells far below their masses are tiny: the mass of a
+// small cell grows like the square of how far its height is lowered, so the linear model asks
+// for far too much (by sqrt(nu_i / m_i) / 2) and every longer step hides Diracs. Before Newton,
+// each such cell is lowered by the step that the square model m(t) = m_i (1 + H_ii t / (2 m_i))^2
+// (a cell growing by homothety; H_ii = dm/dt) gives for a share of its mass; a lowering that
+// empties or hides another Dirac is halved for the Diracs around it and tried again. Measured,
+// 1e5 Diracs of contrast 1e4 from the coarse-to-fine start: 2 cells below a thousandth of their
+// mass made the first step 0.0039 (10 iterations); inflated, it is 0.0625 (8 iterations).
+void inflateSmallCells(const SourceMeasure& source, const std::vector<Vec2>& diracs,
+  const std::vector<double>& nu, std::vector<Height>& h, PowerDiagram& diagram, Evaluation& ev,
+  OTResult& result)
+{
+  const int n = static_cast<int>(diracs.size());
+  constexpr double SmallFraction = 1e-3, Share = 0.25;
+  constexpr int Rounds = 3, Attempts = 8;
+  std::vector<Height> trial;
+  Evaluation trialEv;
+  PowerDiagram trialDiagram;
+  for (int round = 0; round < Rounds; ++round)
+  {
+    const std::vector<double> diagonal = hessianDiagonal(n, ev.coupling);
+    std::vector<double> lowering(n, 0.0);
+    int small = 0;
+    for (int i = 0; i < n; ++i)
+    {
+      const double m = ev.cellMass[i];
+      if (m < SmallFraction * nu[i] && m > 0.0 && diagonal[i] > 0.0)
+      {
+        lowering[i] = 2.0 * m / diagonal[i] * (std::sqrt(Share * nu[i] / m) - 1.0);
+        ++small;
+      }
+    }
+    if (small == 0)
+    {
+      return;
+    }
+    bool accepted = false;
+    for (int attempt = 0; attempt < Attempts && !accepted; ++attempt)
+    {
+      trial = h;
+      for (int i = 0; i < n; ++i)
+      {
+        trial[i] -= lowering[i];
+      }
+      trialDiagram.takeTriangulationFrom(diagram);
+      evaluate(
+        source, diracs, trial, trialDiagram, trialEv, result, PowerDiagram::WhenHidden::ReportSome);
+      // Broken: the Diracs found hidden, or else those whose cells left the domain.
+      const bool hides = trialDiagram.hiddenCount() > 0;
+      int broken = 0;
+      for (int j = 0; j < n; ++j)
+      {
+        if (hides ? !trialDiagram.hidden(j) : trialEv.cellMass[j] > 0.0 || ev.cellMass[j] <= 0.0)
+        {
+          continue;
+        }
+        ++broken;
+        lowering[j] *= 0.5;
+        if (trialDiagram.hidden(j) && trialDiagram.hiddenFace(j)[0] >= 0)
+        {
+          for (const int k : trialDiagram.hiddenFace(j))
+          {
+            lowering[k] *= 0.5;
+          }
+        }
+        for (const int* k = diagram.neighborsBegin(j); k != diagram.neighborsEnd(j); ++k)
+        {
+          if (*k >= 0)
+          {
+            lowering[*k] *= 0.5;
+          }
+        }
+      }
+      accepted = broken == 0;
+    }
+    if (!accepted)
+    {
+      return;
+    }
+    h.swap(trial);
+    std::swap(ev, trialEv);
+    std::swap(diagram, trialDiagram);
+  }
+}
+
+// Coarse-to-fine start heights (OTOptions::coarseToFineStart) checked and, rarely, repaired:
+// the prolongation's heights lie on a convex surface, so that no Dirac should be hidden, but
+// rounding can hide one, and a cell can miss the disk. Hidden Diracs are lowered under the lower
+// hull, empty cells pulled into the disk. Returns false when cells stay empty after a few rounds.
+bool coarseToFineStart(const SourceMeasure& source, const std::vector<Vec2>& diracs,
+  const std::vector<double>& nu, std::vector<Height>& h, PowerDiagram& diagram, Evaluation& ev,
+  OTResult& result)
+{
+  std::vector<Height> fine;
+  if (!source.isUnitDisk() || !coarseToFineHeights(source, diracs, nu, fine))
+  {
+    return false;
+  }
+  for (int round = 0; round < 8; ++round)
+  {
+    evaluate(source, diracs, fine, diagram, ev, result);
+    if (ev.minMass > 0.0)
+    {
+      h.swap(fine);
+      inflateSmallCells(source, diracs, nu, h, diagram, ev, result);
+      return true;
+    }
+    const bool stuck = diagram.hiddenCount() > 0
+      ? unhideDiracs(source, diracs, nu, fine, diagram) > 0
+      : pullEmptyCellsIntoDisk(diracs, nu, ev.cellMass, diagram, fine) == 0;
+    if (stuck)
+    {
+      return false;
+    }
+  }
+  return false;
+}
+
+bool startHeights(const SourceMeasure& source, const std::vector<Vec2>& diracs,
+  const std::vector<double>& nu, double tolerance, bool coarseToFine, std::vector<Height>& h,
+  PowerDiagram& diagram, Evaluation& ev, OTResult& result)
+{
+  const size_t n = diracs.size();
+  h.resize(n);
+  for (size_t i = 0; i < n; ++i)
+  {
+    h[i] = 0.5L * dot(diracs[i], diracs[i]);
+  }
+  const auto [lightest, heaviest] = std::minmax_element(nu.begin(), nu.end());
+  const bool mild = *heaviest <= MildContrast * *lightest;
+  // Many Diracs of high contrast go straight to the coarse-to-fine start: their Voronoi diagram
+  // is not the solution (1e6 Diracs: one evaluation, 4 s, saved).
+  const bool multiscale = coarseToFine && !mild && static_cast<int>(n) >= MultiscaleMinimumDiracs;
+  if (!multiscale)
+  {
+    evaluate(source, diracs, h, diagram, ev, result);
+    if (ev.minMass > 0.0 && (relativeError(ev.cellMass, nu) <= tolerance || mild))
+    {
+      return false;
+    }
+  }
+  if (multiscale && coarseToFineStart(source, diracs, nu, h, diagram, ev, result))
+  {
+    return true;
+  }
+  Vec2 center;
+  double inner;
+  source.innerDisk(center, inner);
+  double reach = 0.0;
+  for (const Vec2& y : diracs)
+  {
+    reach = std::max(reach, norm(y - center));
+  }
+  const double s = reach > 0.0 ? 0.9 * inner / reach : 1.0;
+  for (size_t i = 0; i < n; ++i)
+  {
+    const Vec2 z = center + s * (diracs[i] - center);
+    h[i] = static_cast<long double>(dot(z, z)) / (2.0L * s);
+  }
+  evaluate(source, diracs, h, diagram, ev, result);
+  return false;
+}
+
+// Relative residuals of the Newton solves: near the solution (full steps) the direction must
+// be exact for quadratic convergence to 1e-10; while steps are damped 1e-6 suffices (measured,
+// 1e4 Diracs of contrast 1e4: 1e-4 .. 1e-8 take the same 27 iterations; 1e-2 never converged;
+// 1e-4 stalled the 6.3e4 Diracs of the coarsest level for 1e6 at relative error ~1).
+constexpr double MassFloorFactor = 0.05;
+constexpr double ExactResidual = 1e-11;
+// Above this relative error a stalled solve blames its coarse-to-fine start (the coarse levels
+// are solved to 1e-3).
+constexpr double StalledStartError = 1e-3;
+constexpr double DampedResidual = 1e-6;
+// With full steps (quadratic regime, next error ~0.1 err^2 measured at 1e6 Diracs), the
+// conjugate gradients also stop once no cell's residual exceeds QuadraticShare err^2 of its
+// mass, or ToleranceShare of the tolerance: the direction is then as good as an exact one for
+// the next error, and the 1e-11 residual in the 2-norm (which must cover cells of contrast
+// 1e4 among 1e6) is not needed while the error is still large.
+constexpr double QuadraticShare = 1e-2;
+constexpr double ToleranceShare = 0.1;
+
+// Damped Newton from heights h whose cells are all non-empty (ev evaluated at h).
+// Records histories and stops as documented in OTResult.
+void dampedNewton(const SourceMeasure& source, const std::vector<Vec2>& diracs,
+  const std::vector<double>& nu, std::vector<Height>& h, PowerDiagram& diagram, Evaluation& ev,
+  double tolerance, int maximumNumberOfIterations, const std::function<bool(int, double)>& progress,
+  OTResult& result)
+{
+  const int n = static_cast<int>(diracs.size());
+  // KMT: every accepted step keeps each cell's mass above eps0. Their convergence proof holds
+  // for any eps0 in (0, min(smallest target mass, smallest start mass)]; KMT take half of it.
+  // A tenth of that (0.05) accepts the step 1/2 where half rejected it only for the smallest
+  // cell dipping below eps0 while |g| fell by half (contrast 1e4: 1e4 Diracs 27 -> 25
+  // iterations, 1e5 36 -> 32; contrast 1e6, 1e4 Diracs: 45 -> 38). 0.005 gained nothing more.
+  const double eps0 =
+    MassFloorFactor * std::min(ev.minMass, *std::min_element(nu.begin(), nu.end()));
+  NewtonSystem system(static_cast<int>(std::max_element(nu.begin(), nu.end()) - nu.begin()));
+  std::vector<double> g(n), d;
+  std::vector<Height> trial(n);
+  Evaluation trialEv;
+  PowerDiagram trialDiagram;
+  double lastStep = 1.0;
+  for (int it = 0;; ++it)
+  {
+    result.iterations = it;
+    result.relativeError = relativeError(ev.cellMass, nu);
+    if (progress && !progress(it, result.relativeError))
+    {
+      result.aborted = true;
+      result.message = "aborted";
+      return;
+    }
+    if (result.relativeError <= tolerance)
+    {
+      result.converged = true;
+      std::ostringstream msg;
+      msg << "converged in " << it << " Newton iterations, relative error " << result.relativeError;
+      result.message = msg.str();
+      return;
+    }
+    if (n == 1)
+    {
+      result.message = "a single Dirac: its cell is the whole domain";
+      return;
+    }
+    if (it >= maximumNumberOfIterations)
+    {
+      std::ostringstream msg;
+      msg << "not converged after " << it << " Newton iterations: relative error "
+          << result.relativeError << " > tolerance " << tolerance;
+      result.message = msg.str();
+      return;
+    }
+    for (int i = 0; i < n; ++i)
+    {
+      g[i] = ev.cellMass[i] - nu[i];
+    }
+    const double gnorm = gradientNorm(ev.cellMass, nu);
+    // Far from the solution (damped steps, or cells off by more than their masses) an inexact
+    // Newton direction does as well: the last factorization preconditions conjugate gradients
+    // down to DampedResidual, and a new one is needed far less often (1e5 Diracs of contrast
+    // 1e4: solve 17 -> 11 s, same iterations).
+    const double error = result.relativeError;
+    const NewtonSystem::ResidualTarget target = lastStep < 1.0 || error >= 1.0
+      ? NewtonSystem::ResidualTarget{ DampedResidual, 0.0 }
+      : NewtonSystem::ResidualTarget{ ExactResidual,
+          std::max(ToleranceShare * tolerance, QuadraticShare * error * error) };
+    if (!system.solve(n, ev.coupling, g, nu, d, target, result))
+    {
+      result.message = "the Newton system could not be factorized (disconnected cells?)";
+      return;
+    }
+    // The full step first (quadratic convergence near the solution); after it fails, the
+    // backtracking resumes at 4x the last accepted step rather than at 1/2: every rejected
+    // trial costs a whole evaluation, and high-contrast problems need damped steps for many
+    // iterations in a row.
+    // Near the tolerance after full steps, Newton is in its quadratic regime: a step it must damp
+    // below 1/4 there meets the rounding floor of the cell masses, and further halvings only cost
+    // evaluations (with long double heights, 1e6 Diracs of contrast 1e4 stalled at 1.9e-10;
+    // every trial from 1 down to 2e-12 left the error at 1.9e-10 .. 3.3e-10, 3.5 s each).
+    const bool nearTolerance = lastStep == 1.0 && result.relativeError <= 1e3 * tolerance;
+    const double smallestStep = nearTolerance ? 0.25 : 0.0;
+    double lambda = 1.0;
+    bool accepted = false;
+    for (int trialCount = 0; trialCount < 40 && lambda >= smallestStep; ++trialCount)
+    {
+      for (int i = 0; i < n; ++i)
+      {
+        trial[i] = h[i] + lambda * d[i];
+      }
+      const auto certifying = Clock::now();
+      const bool hides = certainlyHidesADirac(diagram, diracs, trial);
+      result.secondsTriangulation += secondsSince(certifying);
+      if (!hides)
+      {
+        trialDiagram.takeTriangulationFrom(diagram);
+        evaluate(source, diracs, trial, trialDiagram, trialEv, result);
+        // KMT's rule guarantees global convergence. Near the solution |g|_2 sits at the
+        // rounding level of the largest cells while small cells still have relative errors to
+        // remove: a full step that halves the largest relative error is then accepted as well,
+        // and so is one that reaches the tolerance (1e5 Diracs, contrast 1e4, seed 3:
+        // |g|_2 = 2e-16, the full step took the error from 1.08e-10 to 6.6e-11 and was rejected
+        // at every damping).
+        const double trialError = relativeError(trialEv.cellMass, nu);
+        if (trialEv.minMass >= eps0 &&
+          (gradientNorm(trialEv.cellMass, nu) <= (1.0 - 0.5 * lambda) * gnorm ||
+            trialError <= tolerance || (lambda == 1.0 && trialError < 0.5 * result.relativeError)))
+        {
+          accepted = true;
+          break;
+        }
+      }
+      lambda = lambda == 1.0 ? std::min(0.5, 4.0 * lastStep) : 0.5 * lambda;
+    }
+    if (!accepted)
+    {
+      std::ostringstream msg;
+      msg << "Newton step rejected at every damping down to about " << 2.0 * lambda << " after "
+          << it << " iterations (relative error " << result.relativeError
+          << "; the tolerance may be below what double precision allows here)";
+      result.message = msg.str();
+      return;
+    }
+    result.gradientNormHistory.push_back(gnorm);
+    result.stepLengthHistory.push_back(lambda);
+    lastStep = lambda;
+    h.swap(trial);
+    std::swap(ev, trialEv);
+    std::swap(diagram, trialDiagram);
+  }
+}
+
+} // namespace
+
+namespace
+{
+// solveSemiDiscreteOT for valid Diracs.
+OTResult solveValid(const SourceMeasure& source, const std::vector<Vec2>& diracs,
+  const std::vector<double>& masses, const OTOptions& options)
+{
+  OTResult result;
+  const int n = static_cast<int>(diracs.size());
+  // Compensated, in long double: the largest cell (the gauge) absorbs sum(mass) - total, and a
+  // plain sum of 1e5 masses is off by ~1e-14 relative, ~1e-10 of one cell's mass.
+  long double sum = 0.0L, carry = 0.0L;
+  for (const double m : masses)
+  {
+    const long double y = m - carry;
+    const long double t = sum + y;
+    carry = (t - sum) - y;
+    sum = t;
+  }
+  const long double scale = static_cast<long double>(source.totalMass()) / sum;
+  result.mass.resize(n);
+  for (int i = 0; i < n; ++i)
+  {
+    result.mass[i] = static_cast<double>(masses[i] * scale);
+  }
+  const std::vector<double>& nu = result.mass;
+
+  std::vector<Height> h;
+  PowerDiagram diagram;
+  Evaluation ev;
+  const bool multiscale = startHeights(
+    source, diracs, nu, options.tolerance, options.coarseToFineStart, h, diagram, ev, result);
+  if (ev.minMass <= 0.0)
+  {
+    std::ostringstream msg;
+    msg << ev.emptyCells
+        << " cell(s) stay empty at the start (Diracs too close for double precision?)";
+    result.message = msg.str();
+    result.relativeError = relativeError(ev.cellMass, nu);
+  }
+  else
+  {
+    dampedNewton(source, diracs, nu, h, diagram, ev, options.tolerance, options.maximumNumberOfIterations,
+      options.progress, result);
+    // The coarse-to-fine start only saves time: when Newton stalls from it far from the
+    // solution, the solve starts over from the single-level start (seen with 2e4 adaptive
+    // samples of a hand, whose spacing varies by 1e3, before such Diracs were kept single-level:
+    // every damping of the first step was rejected). A stall near the solution is the rounding
+    // limit of the cell masses, which a restart would only reach again, much later.
+    if (multiscale && !result.converged && !result.aborted &&
+      result.iterations < options.maximumNumberOfIterations && result.relativeError > StalledStartError)
+    {
+      std::ostringstream note;
+      note << "the coarse-to-fine start stalled (" << result.message
+           << "); restarted from the single-level start: ";
+      result.gradientNormHistory.clear();
+      result.stepLengthHistory.clear();
+      startHeights(source, diracs, nu, options.tolerance, false, h, diagram, ev, result);
+      if (ev.minMass > 0.0)
+      {
+        dampedNewton(source, diracs, nu, h, diagram, ev, options.tolerance, options.maximumNumberOfIterations,
+          options.progress, result);
+      }
+      result.message = note.str() + result.message;
+    }
+  }
+
+  result.heights.resize(n);
+  for (int i = 0; i < n; ++i)
+  {
+    result.heights[i] = static_cast<double>(h[i].value());
+  }
+  result.cellMass = ev.cellMass;
+  result.centroids.resize(n);
+  for (int i = 0; i < n; ++i)
+  {
+    const double w = ev.cellMass[i];
+    result.centroids[i] = w > 0.0 ? (1.0 / w) * ev.moment[i] : diracs[i];
+  }
+  return result;
+}
+
+} // namespace
+
+OTResult solveSemiDiscreteOT(const SourceMeasure& source, const std::vector<Vec2>& diracs,
+  const std::vector<double>& masses, const OTOptions& options)
+{
+  const std::string invalid = validateDiracs(diracs, masses);
+  if (!invalid.empty())
+  {
+    OTResult result;
+    result.message = invalid;
+    return result;
+  }
+  // The solve numbers the Diracs along a Hilbert curve, so that every loop over them (the power
+  // diagram's rings and vertices, the integration, the Hessian's rows) walks memory in spatial
+  // order; in the caller's order (random, for sampled points) those walks miss the cache.
+  // Measured, 1e6 random Diracs of contrast 1e4: one evaluation 2.8 -> 2.0 s, the solve
+  // 116 -> 82 s.
+  const int n = static_cast<int>(diracs.size());
+  using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+  std::vector<K::Point_2> points;
+  points.reserve(n);
+  for (const Vec2& y : diracs)
+  {
+    points.emplace_back(y.x, y.y);
+  }
+  std::vector<int> order(n);
+  std::iota(order.begin(), order.end(), 0);
+  using Traits =
+    CGAL::Spatial_sort_traits_adapter_2<K, CGAL::Pointer_property_map<K::Point_2>::type>;
+  CGAL::Hilbert_sort_2<Traits, CGAL::Hilbert_sort_median_policy>(
+    Traits(CGAL::make_property_map(points)))(order.begin(), order.end());
+  std::vector<Vec2> sortedDiracs(n);
+  std::vector<double> sortedMasses(n);
+  for (int k = 0; k < n; ++k)
+  {
+    sortedDiracs[k] = diracs[order[k]];
+    sortedMasses[k] = masses[order[k]];
+  }
+  OTResult sorted = solveValid(source, sortedDiracs, sortedMasses, options);
+  OTResult result = sorted;
+  auto unsort = [&](const auto& from, auto& to)
+  {
+    if (static_cast<int>(from.size()) == n)
+    {
+      for (int k = 0; k < n; ++k)
+      {
+        to[order[k]] = from[k];
+      }
+    }
+  };
+  unsort(sorted.mass, result.mass);
+  unsort(sorted.heights, result.heights);
+  unsort(sorted.cellMass, result.cellMass);
+  unsort(sorted.centroids, result.centroids);
+  return result;
+}
+
+CellMeasures computeCellMeasures(
+  const SourceMeasure& source, const std::vector<Vec2>& diracs, const std::vector<double>& heights)
+{
+  OTResult unusedTiming;
+  PowerDiagram diagram;
+  Evaluation ev;
+  evaluate(source, diracs, std::vector<Height>(heights.begin(), heights.end()), diagram, ev,
+    unusedTiming, PowerDiagram::WhenHidden::FindAll, false);
+  CellMeasures measures;
+  measures.mass = ev.cellMass;
+  measures.centroid.resize(diracs.size());
+  for (size_t i = 0; i < diracs.size(); ++i)
+  {
+    const double w = ev.cellMass[i];
+    measures.centroid[i] = w > 0.0 ? (1.0 / w) * ev.moment[i] : diracs[i];
+  }
+  return measures;
+}
+
+PowerDiagramGeometry computePowerDiagramGeometry(const SourceMeasure& source,
+  const std::vector<Vec2>& diracs, const std::vector<double>& heights, double maxArcAngle)
+{
+  PowerDiagramGeometry geometry;
+  PowerDiagram diagram;
+  diagram.build(diracs, std::vector<Height>(heights.begin(), heights.end()));
+  geometry.triangles = diagram.triangles();
+  Vec2 lo, hi;
+  sourceBox(source, lo, hi);
+  PowerCell cell;
+  for (int i = 0; i < diagram.size(); ++i)
+  {
+    diagram.cell(i, lo, hi, cell);
+    if (cell.vertices.empty())
+    {
+      continue;
+    }
+    std::vector<Vec2> boundary = source.clippedBoundary(cell, maxArcAngle);
+    if (boundary.size() < 3)
+    {
+      continue;
+    }
+    // Shared edges inside the domain: clip each labelled edge to the clipped cell.
+    const size_t m = cell.vertices.size();
+    for (size_t k = 0; k < m; ++k)
+    {
+      const int j = cell.neighbor[k];
+      if (j <= i)
+      {
+        continue;
+      }
+      PowerCell edgeCell;
+      edgeCell.vertices = { cell.vertices[k], cell.vertices[(k + 1) % m] };
+      // Clip the segment by the clipped boundary polygon (convex up to arc sampling).
+      Vec2 a = edgeCell.vertices[0], b = edgeCell.vertices[1];
+      double t0 = 0.0, t1 = 1.0;
+      const size_t bn = boundary.size();
+      for (size_t e = 0; e < bn && t0 < t1; ++e)
+      {
+        const Vec2 p = boundary[e], q = boundary[(e + 1) % bn];
+        const double sa = cross(q - p, a - p), sb = cross(q - p, b - p);
+        const double tol = 1e-12 * norm(q - p);
+        if (sa < -tol && sb < -tol)
+        {
+          t1 = -1.0;
+        }
+        else if (sa < -tol)
+        {
+          t0 = std::max(t0, sa / (sa - sb));
+        }
+        else if (sb < -tol)
+        {
+          t1 = std::min(t1, sa / (sa - sb));
+        }
+      }
+      if (t0 < t1)
+      {
+        geometry.edges.push_back({ a + t0 * (b - a), a + t1 * (b - a), i, j });
+      }
+    }
+    geometry.cells.push_back(std::move(boundary));
+    geometry.cellDirac.push_back(i);
+  }
+  return geometry;
+}
+
+} // namespace otparam

@@ -1,0 +1,159 @@
+// The composition step of the area-preserving map (interpolation through the samples,
+// untangling, area correction), on planar disks where the answer is known.
+#include "Composition/DiskComposition.h"
+#include "Mesh/DistortionMetrics.h"
+#include "RingDisk.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+using namespace otparam;
+
+namespace
+{
+SurfaceMesh flatSurface(const otparam::testing::PlanarMesh& disk)
+{
+  SurfaceMesh surface;
+  for (const Vec2& p : disk.points)
+  {
+    surface.points.push_back({ p.x, p.y, 0.0 });
+  }
+  surface.triangles = disk.triangles;
+  return surface;
+}
+
+std::vector<int> boundaryOf(const SurfaceMesh& surface)
+{
+  std::vector<int> loop;
+  EXPECT_EQ(checkDiskTopology(surface, loop), "");
+  return loop;
+}
+} // namespace
+
+TEST(AreaPreservingComposition, IdentityTransportKeepsTheConformalImage)
+{
+  // Mesh and samples are different ring disks: mesh vertices fall inside sample triangles and,
+  // on the boundary, in the circular segments between boundary samples.
+  const otparam::testing::PlanarMesh mesh = otparam::testing::makePlanarDisk(13);
+  const otparam::testing::PlanarMesh samples = otparam::testing::makePlanarDisk(7);
+  const SurfaceMesh surface = flatSurface(mesh);
+  const std::vector<int> loop = boundaryOf(surface);
+  CompositionOptions options;
+  options.correctAreas = false;
+  const CompositionResult result = composeWithInverseTransport(
+    surface, mesh.points, loop, samples.points, samples.points, options);
+  ASSERT_EQ(result.error, "");
+  EXPECT_GT(result.outsideSampleHull, 0);
+  EXPECT_EQ(result.flippedAfterInterpolation, 0);
+  for (size_t v = 0; v < mesh.points.size(); ++v)
+  {
+    EXPECT_NEAR(result.uv[v].x, mesh.points[v].x, 1e-13) << v;
+    EXPECT_NEAR(result.uv[v].y, mesh.points[v].y, 1e-13) << v;
+  }
+}
+
+TEST(AreaPreservingComposition, LinearImagesAreInterpolatedExactly)
+{
+  // A rotation of the disk: interior points follow it exactly, boundary points stay on the
+  // circle at the rotated angle.
+  const otparam::testing::PlanarMesh mesh = otparam::testing::makePlanarDisk(11);
+  const otparam::testing::PlanarMesh samples = otparam::testing::makePlanarDisk(6);
+  const double c = std::cos(0.3), s = std::sin(0.3);
+  std::vector<Vec2> images;
+  for (const Vec2& p : samples.points)
+  {
+    images.push_back({ c * p.x - s * p.y, s * p.x + c * p.y });
+  }
+  const SurfaceMesh surface = flatSurface(mesh);
+  const CompositionResult result =
+    composeWithInverseTransport(surface, mesh.points, boundaryOf(surface), samples.points, images);
+  ASSERT_EQ(result.error, "");
+  for (size_t v = 0; v < mesh.points.size(); ++v)
+  {
+    const Vec2 p = mesh.points[v];
+    EXPECT_NEAR(result.uv[v].x, c * p.x - s * p.y, 1e-12) << v;
+    EXPECT_NEAR(result.uv[v].y, s * p.x + c * p.y, 1e-12) << v;
+  }
+  // Already area-preserving: the correction has nothing to do.
+  EXPECT_LE(result.meanAbsLogAreaRatio, 1e-12);
+}
+
+TEST(AreaPreservingComposition, UntanglesFlipsAndCorrectsAreas)
+{
+  // Sample images shaken hard enough to fold the interpolant over: flips to untangle, areas
+  // far off to correct; the boundary must stay on the circle throughout.
+  const otparam::testing::PlanarMesh mesh = otparam::testing::makePlanarDisk(20);
+  const otparam::testing::PlanarMesh samples = otparam::testing::makePlanarDisk(9);
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> shake(-0.06, 0.06);
+  std::vector<Vec2> images = samples.points;
+  for (Vec2& p : images)
+  {
+    if (norm(p) < 0.95)
+    {
+      p = p + Vec2{ shake(random), shake(random) };
+    }
+  }
+  const SurfaceMesh surface = flatSurface(mesh);
+  const std::vector<int> loop = boundaryOf(surface);
+  const CompositionResult result =
+    composeWithInverseTransport(surface, mesh.points, loop, samples.points, images);
+  ASSERT_EQ(result.error, "");
+  EXPECT_GT(result.flippedAfterInterpolation, 0);
+  EXPECT_GT(result.untangledVertices, 0);
+  EXPECT_EQ(result.flippedTriangles, 0);
+  const DistortionFigures figures = measureDistortion(surface, result.uv);
+  EXPECT_EQ(figures.flippedTriangles, 0);
+  EXPECT_NEAR(figures.meanAbsLogAreaRatio, result.meanAbsLogAreaRatio, 1e-12);
+  EXPECT_LE(result.meanAbsLogAreaRatio, 0.2 * result.meanAbsLogAreaRatioInterpolated)
+    << "interpolated " << result.meanAbsLogAreaRatioInterpolated;
+  EXPECT_LE(result.meanAbsLogAreaRatio, 0.03);
+  for (int v : loop)
+  {
+    EXPECT_NEAR(norm(result.uv[v]), 1.0, 1e-14) << v;
+  }
+}
+
+TEST(AreaPreservingComposition, RejectsMismatchedInputsAndHonoursAbort)
+{
+  const otparam::testing::PlanarMesh mesh = otparam::testing::makePlanarDisk(5);
+  const SurfaceMesh surface = flatSurface(mesh);
+  const std::vector<int> loop = boundaryOf(surface);
+  std::vector<Vec2> shorter(mesh.points.begin(), mesh.points.end() - 1);
+  EXPECT_NE(
+    composeWithInverseTransport(surface, shorter, loop, mesh.points, mesh.points).error, "");
+  EXPECT_NE(
+    composeWithInverseTransport(surface, mesh.points, loop, mesh.points, shorter).error, "");
+  const std::vector<Vec2> two(mesh.points.begin(), mesh.points.begin() + 2);
+  EXPECT_NE(composeWithInverseTransport(surface, mesh.points, loop, two, two).error, "");
+
+  CompositionOptions options;
+  options.progress = [](double) { return false; };
+  const CompositionResult aborted =
+    composeWithInverseTransport(surface, mesh.points, loop, mesh.points, mesh.points, options);
+  EXPECT_TRUE(aborted.aborted);
+}
+
+TEST(AreaPreservingComposition, BoundaryArcMidpoint)
+{
+  auto cellWithArc = [](double from, double to)
+  {
+    std::vector<Vec2> cell = { { 0.5 * std::cos(0.5 * (from + to)),
+      0.5 * std::sin(0.5 * (from + to)) } };
+    for (int k = 0; k <= 8; ++k)
+    {
+      const double angle = from + (to - from) * k / 8.0;
+      cell.push_back({ std::cos(angle), std::sin(angle) });
+    }
+    return cell;
+  };
+  Vec2 middle = boundaryArcMidpoint(cellWithArc(0.2, 0.6));
+  EXPECT_NEAR(middle.x, std::cos(0.4), 1e-14);
+  EXPECT_NEAR(middle.y, std::sin(0.4), 1e-14);
+  middle = boundaryArcMidpoint(cellWithArc(3.0, 3.4)); // across the +-pi cut
+  EXPECT_NEAR(middle.x, std::cos(3.2), 1e-14);
+  EXPECT_NEAR(middle.y, std::sin(3.2), 1e-14);
+  EXPECT_TRUE(std::isnan(boundaryArcMidpoint({ { 0.0, 0.0 }, { 0.5, 0.0 }, { 0.0, 0.5 } }).x));
+}
