@@ -54,13 +54,13 @@
 #define vtkAdaptiveDensitySampler_h
 
 #include "OTParamFiltersModule.h" // for export macro
-#include "vtkPolyDataAlgorithm.h"
+#include "vtkOTParamAlgorithm.h"
 
-class OTPARAMFILTERS_EXPORT vtkAdaptiveDensitySampler : public vtkPolyDataAlgorithm
+class OTPARAMFILTERS_EXPORT vtkAdaptiveDensitySampler : public vtkOTParamAlgorithm
 {
 public:
   static vtkAdaptiveDensitySampler* New();
-  vtkTypeMacro(vtkAdaptiveDensitySampler, vtkPolyDataAlgorithm);
+  vtkTypeMacro(vtkAdaptiveDensitySampler, vtkOTParamAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   enum SamplingModes
@@ -135,8 +135,7 @@ protected:
   ~vtkAdaptiveDensitySampler() override;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
-  int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
-  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int Execute(vtkInformationVector** inputVector, vtkInformationVector* outputVector) override;
 
   int NumberOfSamples = 1000;
   int SamplingMode = ADAPTIVE;

@@ -4,14 +4,15 @@
  *
  * The whole method of OTParam as one filter: vtkConformalDiskMap -> vtkAdaptiveDensitySampler
  * (on the conformal image's exact per-triangle `AreaDensity`) -> vtkSemiDiscreteOTSolver (the
- * unit disk with uniform density as source) -> composition T^-1 o phi, run as an internal
- * pipeline of the three filters. The composition (Filters/Core/Composition/DiskComposition.h)
- * maps every sample to the centroid of its power cell, every mesh vertex by piecewise-linear
- * interpolation over the samples' Delaunay triangulation (boundary vertices exactly on the
- * circle), untangles any flipped triangle, and then, with AreaCorrection on (the default),
- * moves vertices so that each triangle gets its surface area fraction, which removes what the
- * interpolation between a finite number of samples leaves. Both figures, before and after the
- * correction, are in the field data.
+ * unit disk with uniform density as source) -> composition T^-1 o phi. The stages are chained
+ * once, in the core (Filters/Core/Pipeline/AreaPreservingPipeline.h, which the command line
+ * and the benchmarks call too); each is the one its own filter runs. The composition
+ * (Filters/Core/Composition/DiskComposition.h) maps every sample to the centroid of its power cell,
+ * every mesh vertex by piecewise-linear interpolation over the samples' Delaunay triangulation
+ * (boundary vertices exactly on the circle), untangles any flipped triangle, and then, with
+ * AreaCorrection on (the default), moves vertices so that each triangle gets its surface area
+ * fraction, which removes what the interpolation between a finite number of samples leaves. Both
+ * figures, before and after the correction, are in the field data.
  *
  * Input: a triangle surface, genus 0, exactly one boundary loop (as for vtkConformalDiskMap).
  *
@@ -41,22 +42,20 @@
  * Bad input is rejected by the stage that finds it, with that stage's message prefixed by its
  * name ("conformal map: ...", "sampling: ...", "transport: ..."); own parameters are checked
  * first. RequestData then returns 0 and the outputs are empty; the input is never modified.
- * Progress covers the four stages; AbortExecute is passed on to the running stage.
+ * Progress covers the four stages (the progress text names the running one); AbortExecute
+ * stops the running stage.
  */
 #ifndef vtkAreaPreservingParam_h
 #define vtkAreaPreservingParam_h
 
 #include "OTParamFiltersModule.h" // for export macro
-#include "vtkPolyDataAlgorithm.h"
+#include "vtkOTParamAlgorithm.h"
 
-#include <string> // for the stage messages
-#include <vector> // for the stage messages
-
-class OTPARAMFILTERS_EXPORT vtkAreaPreservingParam : public vtkPolyDataAlgorithm
+class OTPARAMFILTERS_EXPORT vtkAreaPreservingParam : public vtkOTParamAlgorithm
 {
 public:
   static vtkAreaPreservingParam* New();
-  vtkTypeMacro(vtkAreaPreservingParam, vtkPolyDataAlgorithm);
+  vtkTypeMacro(vtkAreaPreservingParam, vtkOTParamAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   enum SamplingModes
@@ -150,28 +149,22 @@ protected:
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int FillOutputPortInformation(int port, vtkInformation* info) override;
-  int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
-  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int Execute(vtkInformationVector** inputVector, vtkInformationVector* outputVector) override;
 
-  int NumberOfSamples = 5000;
+  // Defaults of the core's AreaPreservingOptions, set by the constructor.
+  int NumberOfSamples;
   int SamplingMode = ADAPTIVE;
-  double Tolerance = 1e-10;
-  int MaximumNumberOfIterations = 200;
+  double Tolerance;
+  int MaximumNumberOfIterations;
   vtkIdType CenterPointId = -1;
   vtkIdType AlignPointId = -1;
-  bool AreaCorrection = true;
-  int MaximumCorrectionSweeps = 200;
+  bool AreaCorrection;
+  int MaximumCorrectionSweeps;
   int NumberOfHistogramBins = 50;
 
 private:
   vtkAreaPreservingParam(const vtkAreaPreservingParam&) = delete;
   void operator=(const vtkAreaPreservingParam&) = delete;
-
-  // Runs one stage of the internal pipeline with its progress mapped to [start, end] of ours,
-  // our abort passed on, and its errors and warnings collected (prefixed with `name`).
-  bool RunStage(vtkAlgorithm* stage, const char* name, double start, double end);
-  std::string StageError;
-  std::vector<std::string> StageWarnings;
 };
 
 #endif

@@ -44,13 +44,13 @@
 #define vtkConformalDiskMap_h
 
 #include "OTParamFiltersModule.h" // for export macro
-#include "vtkPolyDataAlgorithm.h"
+#include "vtkOTParamAlgorithm.h"
 
-class OTPARAMFILTERS_EXPORT vtkConformalDiskMap : public vtkPolyDataAlgorithm
+class OTPARAMFILTERS_EXPORT vtkConformalDiskMap : public vtkOTParamAlgorithm
 {
 public:
   static vtkConformalDiskMap* New();
-  vtkTypeMacro(vtkConformalDiskMap, vtkPolyDataAlgorithm);
+  vtkTypeMacro(vtkConformalDiskMap, vtkOTParamAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   ///@{
@@ -96,8 +96,7 @@ protected:
   ~vtkConformalDiskMap() override;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
-  int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
-  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int Execute(vtkInformationVector** inputVector, vtkInformationVector* outputVector) override;
 
   vtkIdType CenterPointId = -1;
   vtkIdType AlignPointId = -1;

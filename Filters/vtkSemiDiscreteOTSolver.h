@@ -65,13 +65,13 @@
 #define vtkSemiDiscreteOTSolver_h
 
 #include "OTParamFiltersModule.h" // for export macro
-#include "vtkPolyDataAlgorithm.h"
+#include "vtkOTParamAlgorithm.h"
 
-class OTPARAMFILTERS_EXPORT vtkSemiDiscreteOTSolver : public vtkPolyDataAlgorithm
+class OTPARAMFILTERS_EXPORT vtkSemiDiscreteOTSolver : public vtkOTParamAlgorithm
 {
 public:
   static vtkSemiDiscreteOTSolver* New();
-  vtkTypeMacro(vtkSemiDiscreteOTSolver, vtkPolyDataAlgorithm);
+  vtkTypeMacro(vtkSemiDiscreteOTSolver, vtkOTParamAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   ///@{
@@ -114,8 +114,7 @@ protected:
   ~vtkSemiDiscreteOTSolver() override;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
-  int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
-  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int Execute(vtkInformationVector** inputVector, vtkInformationVector* outputVector) override;
 
   double Tolerance = 1e-10;
   int MaximumNumberOfIterations = 200;

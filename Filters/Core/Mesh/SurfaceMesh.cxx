@@ -60,18 +60,31 @@ std::string compactMesh(const std::vector<Vec3>& points,
 {
   const auto n = static_cast<std::int64_t>(points.size());
   std::vector<std::int64_t> newId(points.size(), -1);
+  // Every triangle with an id out of range is named (a file with wrong offsets has many).
+  std::vector<size_t> outside;
+  std::int64_t firstOutsideId = 0;
   for (size_t t = 0; t < triangles.size(); ++t)
   {
-    const auto& tri = triangles[t];
-    for (auto v : tri)
+    for (auto v : triangles[t])
     {
       if (v < 0 || v >= n)
       {
-        std::ostringstream msg;
-        msg << "triangle " << t << " uses point id " << v << ", outside [0, " << n << ")";
-        return msg.str();
+        firstOutsideId = outside.empty() ? v : firstOutsideId;
+        outside.push_back(t);
+        break;
       }
     }
+  }
+  if (!outside.empty())
+  {
+    std::ostringstream msg;
+    msg << "triangle id(s) " << idList(outside) << " use point ids outside [0, " << n
+        << "): triangle " << outside.front() << " uses point id " << firstOutsideId;
+    return msg.str();
+  }
+  for (size_t t = 0; t < triangles.size(); ++t)
+  {
+    const auto& tri = triangles[t];
     if (tri[0] == tri[1] || tri[1] == tri[2] || tri[2] == tri[0])
     {
       std::ostringstream msg;

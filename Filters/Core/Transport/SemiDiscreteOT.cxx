@@ -1,8 +1,8 @@
 #include "Transport/SemiDiscreteOT.h"
 
+#include "Common/SparseCholesky.h"
 #include "Transport/MultiscaleStart.h"
 #include "Transport/PlanarPowerDiagram.h"
-#include "Common/SparseCholesky.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Hilbert_sort_2.h>
@@ -426,6 +426,7 @@ std::string validateDiracs(const std::vector<Vec2>& diracs, const std::vector<do
   if (!bad.empty())
   {
     listIds("have a Mass that is not finite and positive", bad);
+    msg << "; the first is " << masses[bad.front()];
     return msg.str();
   }
   std::vector<size_t> order(diracs.size());
@@ -820,15 +821,16 @@ OTResult solveValid(const SourceMeasure& source, const std::vector<Vec2>& diracs
   }
   else
   {
-    dampedNewton(source, diracs, nu, h, diagram, ev, options.tolerance, options.maximumNumberOfIterations,
-      options.progress, result);
+    dampedNewton(source, diracs, nu, h, diagram, ev, options.tolerance,
+      options.maximumNumberOfIterations, options.progress, result);
     // The coarse-to-fine start only saves time: when Newton stalls from it far from the
     // solution, the solve starts over from the single-level start (seen with 2e4 adaptive
     // samples of a hand, whose spacing varies by 1e3, before such Diracs were kept single-level:
     // every damping of the first step was rejected). A stall near the solution is the rounding
     // limit of the cell masses, which a restart would only reach again, much later.
     if (multiscale && !result.converged && !result.aborted &&
-      result.iterations < options.maximumNumberOfIterations && result.relativeError > StalledStartError)
+      result.iterations < options.maximumNumberOfIterations &&
+      result.relativeError > StalledStartError)
     {
       std::ostringstream note;
       note << "the coarse-to-fine start stalled (" << result.message
@@ -838,8 +840,8 @@ OTResult solveValid(const SourceMeasure& source, const std::vector<Vec2>& diracs
       startHeights(source, diracs, nu, options.tolerance, false, h, diagram, ev, result);
       if (ev.minMass > 0.0)
       {
-        dampedNewton(source, diracs, nu, h, diagram, ev, options.tolerance, options.maximumNumberOfIterations,
-          options.progress, result);
+        dampedNewton(source, diracs, nu, h, diagram, ev, options.tolerance,
+          options.maximumNumberOfIterations, options.progress, result);
       }
       result.message = note.str() + result.message;
     }

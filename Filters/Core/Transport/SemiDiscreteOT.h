@@ -15,8 +15,8 @@ namespace otparam
 
 struct OTOptions
 {
-  double tolerance = 1e-10; // largest relative cell-mass error accepted
-  int maximumNumberOfIterations = 200;  // Newton iterations
+  double tolerance = 1e-10;            // largest relative cell-mass error accepted
+  int maximumNumberOfIterations = 200; // Newton iterations
   // Start from a coarse problem (MultiscaleStart.h; unit-disk source, from 2e4 Diracs up, masses
   // of high contrast). Measured, 1e5 Diracs of contrast 1e4 (median of 3): 9 Newton iterations
   // on the fine level and 9.4 s in all, against 31 iterations and 22 s from the shrunk Voronoi

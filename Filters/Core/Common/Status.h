@@ -1,0 +1,27 @@
+// How a stage of the core ends: the one error convention of the stage functions that the
+// adapters, the pipeline and the command line call.
+#ifndef OTPARAM_COMMON_STATUS_H
+#define OTPARAM_COMMON_STATUS_H
+
+#include <string>
+#include <vector>
+
+namespace otparam
+{
+
+struct Status
+{
+  // Empty when the stage succeeded; else a sentence about the user's data or parameters that
+  // names the problem and where (ids, property names), ready to be shown as it is.
+  std::string error;
+  // What a user should know about a successful run (points left out, a cap that was hit).
+  std::vector<std::string> warnings;
+  // The progress callback asked to stop; the stage's results are incomplete.
+  bool aborted = false;
+
+  bool ok() const { return this->error.empty() && !this->aborted; }
+};
+
+} // namespace otparam
+
+#endif

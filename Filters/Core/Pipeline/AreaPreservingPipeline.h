@@ -1,0 +1,62 @@
+// The area-preserving parameterization, chained once: conformal map -> adaptive sampling of its
+// area density -> semi-discrete transport from the uniform unit disk -> composition T^-1 o phi.
+// vtkAreaPreservingParam, the command line and the benchmarks all call parameterizeDisk, so
+// they produce and measure the same map.
+#ifndef OTPARAM_PIPELINE_AREAPRESERVINGPIPELINE_H
+#define OTPARAM_PIPELINE_AREAPRESERVINGPIPELINE_H
+
+#include "Composition/DiskComposition.h"
+#include "Pipeline/DiskStages.h"
+
+#include <functional>
+
+namespace otparam
+{
+
+struct AreaPreservingOptions
+{
+  AreaPreservingOptions();
+
+  ConformalStageOptions conformal;
+  SamplerOptions sampling; // numberOfSamples 5000: see the constructor
+  OTOptions transport;
+  double maximumArcAngle = 0.05; // arcs of the circle in the cells whose middles the
+                                 // boundary samples go to
+  CompositionOptions composition;
+  // Called with (stage name, fraction of the whole run done); returning false aborts.
+  std::function<bool(const char*, double)> progress;
+
+  std::string check() const; // "" or what is wrong with a value (named as the property)
+};
+
+struct AreaPreservingResult
+{
+  // status.error is prefixed by the stage that failed ("conformal map: ", "sampling: ",
+  // "transport: ", "composition: "); status.warnings likewise.
+  Status status;
+  ConformalStage conformal;
+  SamplingStage sampling;
+  // The samples given to the transport: those of positive mass (a sample whose Voronoi cell
+  // integrates to 0 carries no mass; the transport is the same without it).
+  std::vector<Vec2> diracs;
+  std::vector<double> masses;
+  int droppedSamples = 0;
+  TransportStage transport;
+  std::vector<Vec2> sampleImages; // T^-1 of each Dirac
+  CompositionResult composition;
+  DistortionFigures figures; // of the area-preserving map, per triangle of conformal.surface
+  double secondsConformal = 0, secondsSampling = 0, secondsTransport = 0, secondsComposition = 0,
+         secondsTotal = 0;
+};
+
+AreaPreservingResult parameterizeDisk(
+  const TriangleSoup& surface, const AreaPreservingOptions& options = AreaPreservingOptions());
+
+// Where each Dirac goes under T^-1: the centroid of its power cell, or for a Dirac on the unit
+// circle the middle of its cell's arc of the circle (boundaryArcMidpoint).
+std::vector<Vec2> inverseTransportOfDiracs(
+  const std::vector<Vec2>& diracs, const TransportStage& transport);
+
+} // namespace otparam
+
+#endif

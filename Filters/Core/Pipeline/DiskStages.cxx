@@ -1,0 +1,434 @@
+#include "Pipeline/DiskStages.h"
+
+#include "Common/IdList.h"
+
+#include <algorithm>
+#include <cmath>
+#include <exception>
+#include <sstream>
+
+namespace otparam
+{
+
+namespace
+{
+std::string finiteAndPositive(const char* name, double value)
+{
+  if (value > 0.0 && std::isfinite(value))
+  {
+    return {};
+  }
+  std::ostringstream msg;
+  msg << name << " must be positive and finite; got " << value << ".";
+  return msg.str();
+}
+
+std::string atLeast(const char* name, long long value, long long minimum)
+{
+  if (value >= minimum)
+  {
+    return {};
+  }
+  std::ostringstream msg;
+  msg << name << " must be at least " << minimum << "; got " << value << ".";
+  return msg.str();
+}
+
+// Soup ids of the normalization points -> ids of the compacted surface, checked against the
+// boundary loop; "" or the message.
+std::string normalizationVertices(const TriangleSoup& soup, const ConformalStageOptions& options,
+  const CompactedMesh& surface, const std::vector<int>& loop, ConformalDiskMapOptions& map)
+{
+  const auto numberOfPoints = static_cast<std::int64_t>(soup.points.size());
+  std::vector<int> meshId(soup.points.size(), -1);
+  for (std::size_t v = 0; v < surface.originalPointIds.size(); ++v)
+  {
+    meshId[surface.originalPointIds[v]] = static_cast<int>(v);
+  }
+  std::ostringstream msg;
+  auto toMeshId = [&](std::int64_t id, const char* property, int& out)
+  {
+    out = -1;
+    if (id == -1)
+    {
+      return true;
+    }
+    if (id < 0 || id >= numberOfPoints)
+    {
+      msg << property << " = " << id << " is not a point id of the input (it has " << numberOfPoints
+          << " points; -1 chooses automatically).";
+      return false;
+    }
+    if (meshId[id] < 0)
+    {
+      msg << property << " = " << id << " names a point that belongs to no triangle.";
+      return false;
+    }
+    out = meshId[id];
+    return true;
+  };
+  if (!toMeshId(options.centerPointId, "CenterPointId", map.centerVertex) ||
+    !toMeshId(options.alignPointId, "AlignPointId", map.alignVertex))
+  {
+    return msg.str();
+  }
+  std::vector<char> onBoundary(surface.mesh.points.size(), 0);
+  for (int v : loop)
+  {
+    onBoundary[v] = 1;
+  }
+  if (map.centerVertex >= 0 && onBoundary[map.centerVertex])
+  {
+    msg << "CenterPointId = " << options.centerPointId
+        << " is a boundary point; the point sent to the disk's centre must be an interior "
+           "point.";
+  }
+  else if (map.alignVertex >= 0 && !onBoundary[map.alignVertex])
+  {
+    msg << "AlignPointId = " << options.alignPointId
+        << " is not a boundary point; the point sent to (1, 0) must be on the boundary loop.";
+  }
+  return msg.str();
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+std::string ConformalStageOptions::check() const
+{
+  std::string error = finiteAndPositive("Tolerance", this->map.tolerance);
+  if (error.empty())
+  {
+    error = atLeast("MaximumNumberOfIterations", this->map.maximumNumberOfIterations, 0);
+  }
+  return error;
+}
+
+//------------------------------------------------------------------------------
+ConformalStage runConformalStage(const TriangleSoup& soup, const ConformalStageOptions& options)
+{
+  ConformalStage stage;
+  Status& status = stage.status;
+  status.error = options.check();
+  if (!status.error.empty())
+  {
+    return stage;
+  }
+  std::string error = compactMesh(soup.points, soup.triangles, stage.surface);
+  if (error.empty())
+  {
+    error =
+      checkDiskTopology(stage.surface.mesh, stage.boundaryLoop, &stage.surface.originalPointIds);
+  }
+  if (!error.empty())
+  {
+    status.error = "The input is not a disk-like triangle surface: " + error + ".";
+    return stage;
+  }
+  ConformalDiskMapOptions mapOptions = options.map;
+  status.error =
+    normalizationVertices(soup, options, stage.surface, stage.boundaryLoop, mapOptions);
+  if (!status.error.empty())
+  {
+    return stage;
+  }
+  const SurfaceMesh& mesh = stage.surface.mesh;
+  try
+  {
+    stage.map = computeConformalDiskMap(mesh, stage.boundaryLoop, mapOptions);
+    if (stage.map.aborted)
+    {
+      status.aborted = true;
+      return stage;
+    }
+    if (!stage.map.error.empty())
+    {
+      status.error = "The conformal map failed: " + stage.map.error + ".";
+      return stage;
+    }
+    stage.figures = measureDistortion(mesh, stage.map.uv);
+    computeAreaDensity(mesh, stage.map.uv, stage.areaDensityPerTriangle, stage.areaDensityPerPoint);
+  }
+  catch (const std::exception& e)
+  {
+    status.error = std::string("The conformal map failed: ") + e.what();
+    return stage;
+  }
+  for (int v : stage.boundaryLoop)
+  {
+    stage.maximumBoundaryRadiusError = std::max(stage.maximumBoundaryRadiusError,
+      std::abs(std::hypot(stage.map.uv[v].x, stage.map.uv[v].y) - 1.0));
+  }
+  std::ostringstream msg;
+  if (stage.surface.unreferencedPoints > 0)
+  {
+    msg << stage.surface.unreferencedPoints
+        << " input point(s) belong to no triangle and are left out of the output; the point "
+           "array vtkOriginalPointIds gives each output point's input id.";
+    status.warnings.push_back(msg.str());
+    msg.str("");
+  }
+  if (stage.figures.flippedTriangles > 0)
+  {
+    msg << stage.figures.flippedTriangles << " triangle(s) are flipped in the disk image.";
+    status.warnings.push_back(msg.str());
+  }
+  return stage;
+}
+
+//------------------------------------------------------------------------------
+std::string checkSamplerOptions(const SamplerOptions& options)
+{
+  std::ostringstream msg;
+  const int mode = static_cast<int>(options.mode);
+  const int rule = static_cast<int>(options.sizeRule);
+  if (mode < 0 || mode > 2)
+  {
+    msg << "SamplingMode must be 0 (Adaptive), 1 (Uniform) or 2 (MeshVertices); got " << mode
+        << ".";
+  }
+  else if (rule < 0 || rule > 1)
+  {
+    msg << "SizeRule must be 0 (R * sqrt(density)) or 1 (R * density); got " << rule << ".";
+  }
+  else if (options.numberOfSamples < 3)
+  {
+    msg << "NumberOfSamples must be at least 3; got " << options.numberOfSamples << ".";
+  }
+  else if (options.numberOfSamples > options.maximumNumberOfSamples)
+  {
+    msg << "NumberOfSamples = " << options.numberOfSamples
+        << " is above MaximumNumberOfSamples = " << options.maximumNumberOfSamples
+        << "; raise MaximumNumberOfSamples or ask for fewer.";
+  }
+  else if (!(options.minimumAngleDegrees > 0.0) || !(options.minimumAngleDegrees <= 35.0))
+  {
+    msg << "MinimumAngle must be in (0, 35] degrees (Delaunay refinement does not terminate "
+           "for larger bounds); got "
+        << options.minimumAngleDegrees << ".";
+  }
+  return msg.str();
+}
+
+//------------------------------------------------------------------------------
+std::string checkDensityValues(
+  const std::vector<double>& values, const char* what, const std::vector<std::int64_t>* reportedIds)
+{
+  std::vector<std::int64_t> nan, infinite, negative;
+  double firstNegative = 0.0;
+  bool positive = false;
+  for (std::size_t k = 0; k < values.size(); ++k)
+  {
+    const std::int64_t id = reportedIds ? (*reportedIds)[k] : static_cast<std::int64_t>(k);
+    const double value = values[k];
+    if (std::isnan(value))
+    {
+      nan.push_back(id);
+    }
+    else if (std::isinf(value))
+    {
+      infinite.push_back(id);
+    }
+    else if (value < 0.0)
+    {
+      firstNegative = negative.empty() ? value : firstNegative;
+      negative.push_back(id);
+    }
+    else if (value > 0.0)
+    {
+      positive = true;
+    }
+  }
+  std::ostringstream msg;
+  const std::string ids = std::string(" at ") + what + " id(s) ";
+  if (!nan.empty())
+  {
+    msg << "must be finite and >= 0, but it is NaN" << ids << idList(nan);
+  }
+  else if (!infinite.empty())
+  {
+    msg << "must be finite and >= 0, but it is infinite" << ids << idList(infinite);
+  }
+  else if (!negative.empty())
+  {
+    msg << "must be finite and >= 0, but it is negative" << ids << idList(negative)
+        << " (first value: " << firstNegative << ")";
+  }
+  else if (!positive)
+  {
+    msg << "is zero everywhere (all " << values.size()
+        << (std::string(what) == "point" ? " points" : " triangles")
+        << " of the domain); it must be positive somewhere";
+  }
+  return msg.str();
+}
+
+//------------------------------------------------------------------------------
+SamplingStage runSamplingStage(const std::vector<Vec2>& points,
+  const std::vector<Triangle>& triangles, const std::vector<double>& perPoint,
+  const std::vector<double>& perTriangle, const SamplerOptions& options)
+{
+  SamplingStage stage;
+  Status& status = stage.status;
+  status.error = checkSamplerOptions(options);
+  if (!status.error.empty())
+  {
+    return stage;
+  }
+  std::string error;
+  std::unique_ptr<DensityField> density;
+  try
+  {
+    density = DensityField::create(points, triangles, perPoint, perTriangle, error);
+  }
+  catch (const std::exception& e)
+  {
+    density.reset();
+    error = e.what();
+  }
+  if (!density)
+  {
+    status.error = "The domain is not supported: " + error + ".";
+    return stage;
+  }
+  SamplerResult& result = stage.result;
+  try
+  {
+    result = sampleDensity(*density, options);
+  }
+  catch (const std::exception& e)
+  {
+    status.error = std::string("The sampling failed: ") + e.what();
+    return stage;
+  }
+  if (result.aborted)
+  {
+    status.aborted = true;
+    return stage;
+  }
+  if (!result.error.empty())
+  {
+    status.error = "The sampling failed: " + result.error;
+    return stage;
+  }
+  if (result.samples.empty() || result.mass.size() != result.samples.size())
+  {
+    std::ostringstream msg;
+    msg << "The sampling returned " << result.samples.size() << " samples and "
+        << result.mass.size() << " masses; expected one mass per sample.";
+    status.error = msg.str();
+    return stage;
+  }
+  stage.zeroMassSamples =
+    std::count_if(result.mass.begin(), result.mass.end(), [](double m) { return !(m > 0.0); });
+  std::ostringstream msg;
+  if (result.capped)
+  {
+    msg << "The refinement hit the cap MaximumNumberOfSamples = " << options.maximumNumberOfSamples
+        << " and stopped there with " << result.samples.size()
+        << " samples: the triangles are not all refined to the size threshold (raise "
+           "MaximumNumberOfSamples or lower NumberOfSamples).";
+    status.warnings.push_back(msg.str());
+    msg.str("");
+  }
+  if (!result.warning.empty())
+  {
+    msg << "NumberOfSamples = " << options.numberOfSamples << " not met: " << result.warning << ".";
+    status.warnings.push_back(msg.str());
+  }
+  return stage;
+}
+
+//------------------------------------------------------------------------------
+std::string checkTransportOptions(const OTOptions& options, double maximumArcAngle)
+{
+  std::string error = finiteAndPositive("Tolerance", options.tolerance);
+  if (error.empty())
+  {
+    error = atLeast("MaximumNumberOfIterations", options.maximumNumberOfIterations, 1);
+  }
+  if (error.empty() && !(maximumArcAngle > 0.0 && maximumArcAngle <= 1.0))
+  {
+    std::ostringstream msg;
+    msg << "MaximumArcAngle must be in (0, 1] radians; got " << maximumArcAngle << ".";
+    error = msg.str();
+  }
+  return error;
+}
+
+//------------------------------------------------------------------------------
+NewtonProgress::NewtonProgress(const OTOptions& options)
+  : Tolerance(options.tolerance)
+  , MaximumNumberOfIterations(std::max(1, options.maximumNumberOfIterations))
+{
+}
+
+//------------------------------------------------------------------------------
+double NewtonProgress::operator()(int iteration, double relativeError)
+{
+  if (this->FirstError < 0.0)
+  {
+    this->FirstError = relativeError;
+  }
+  double fraction = static_cast<double>(iteration) / this->MaximumNumberOfIterations;
+  if (this->FirstError > this->Tolerance && relativeError > 0.0)
+  {
+    fraction = std::max(fraction,
+      std::log(this->FirstError / relativeError) / std::log(this->FirstError / this->Tolerance));
+  }
+  this->Fraction = std::max(this->Fraction, std::min(0.95, fraction));
+  return this->Fraction;
+}
+
+//------------------------------------------------------------------------------
+TransportStage runTransportStage(const SourceMeasure& source, const std::vector<Vec2>& diracs,
+  const std::vector<double>& masses, const OTOptions& options, double maximumArcAngle)
+{
+  TransportStage stage;
+  Status& status = stage.status;
+  status.error = checkTransportOptions(options, maximumArcAngle);
+  if (!status.error.empty())
+  {
+    return stage;
+  }
+  const std::string diracError = validateDiracs(diracs, masses);
+  if (!diracError.empty())
+  {
+    status.error = "Invalid Diracs input (port 0): " + diracError;
+    return stage;
+  }
+  OTResult& result = stage.result;
+  try
+  {
+    result = solveSemiDiscreteOT(source, diracs, masses, options);
+    if (result.aborted)
+    {
+      status.aborted = true;
+      return stage;
+    }
+    stage.geometry = computePowerDiagramGeometry(source, diracs, result.heights, maximumArcAngle);
+  }
+  catch (const std::exception& e)
+  {
+    status.error = std::string("The semi-discrete OT solve failed: ") + e.what();
+    return stage;
+  }
+  const std::size_t n = diracs.size();
+  if (result.heights.size() != n || result.mass.size() != n || result.cellMass.size() != n ||
+    result.centroids.size() != n)
+  {
+    status.error = "The semi-discrete OT solve returned no solution: " + result.message;
+    return stage;
+  }
+  if (!result.converged)
+  {
+    std::ostringstream msg;
+    msg << "Not converged after " << result.iterations
+        << " Newton iterations (MaximumNumberOfIterations = " << options.maximumNumberOfIterations
+        << "): relative error " << result.relativeError << " > Tolerance " << options.tolerance
+        << ". " << result.message << " The outputs hold this last iterate, with Converged = 0.";
+    status.warnings.push_back(msg.str());
+  }
+  return stage;
+}
+
+} // namespace otparam

@@ -1,0 +1,92 @@
+// Conversions between VTK data and the core's plain types, written once for every adapter
+// (private to the module, not wrapped). Readers return "" or a message that names the problem
+// and where, for vtkErrorMacro; writers build VTK objects from core results.
+#ifndef OTParamConvert_h
+#define OTParamConvert_h
+
+#include "vtkCellArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkIntArray.h"
+#include "vtkPoints.h"
+#include "vtkSmartPointer.h"
+
+#include "Common/Geometry.h"
+#include "Pipeline/DiskStages.h"
+
+#include <chrono>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+class vtkCellData;
+class vtkDataObject;
+class vtkIdTypeArray;
+class vtkPointSet;
+class vtkPolyData;
+class vtkTable;
+
+namespace otparam_vtk
+{
+
+// ---- Reading.
+// A surface made of triangles only: `what` names it in messages ("input surface", "input
+// domain"). Point ids are not checked here (compactMesh does, naming the triangles).
+std::string ReadTriangleSoup(vtkPolyData* input, const char* what, otparam::TriangleSoup& soup);
+
+// The points `ids` of a surface, which must lie in the plane z = 0 (up to 1e-12 of the
+// domain's size) and be finite; messages name the input's point ids.
+std::string ReadPlanarPoints(const std::vector<otparam::Vec3>& points,
+  const std::vector<std::int64_t>& ids, const char* what, std::vector<otparam::Vec2>& planar);
+
+// ---- Writing.
+vtkSmartPointer<vtkPoints> MakePoints(const std::vector<otparam::Vec2>& points);
+vtkSmartPointer<vtkPoints> MakePoints(const std::vector<otparam::Vec3>& points);
+vtkSmartPointer<vtkCellArray> MakeTriangles(const std::vector<otparam::Triangle>& triangles);
+
+vtkSmartPointer<vtkDoubleArray> MakeDoubleArray(
+  const char* name, const std::vector<double>& values, int components = 1);
+// (x, y) per point: 2 components, or 3 with z = 0.
+vtkSmartPointer<vtkDoubleArray> MakeVec2Array(
+  const char* name, const std::vector<otparam::Vec2>& values, int components = 2);
+vtkSmartPointer<vtkDoubleArray> MakeVec3Array(
+  const char* name, const std::vector<otparam::Vec3>& values);
+
+// One-value field data arrays.
+void AddScalar(vtkDataObject* data, const char* name, double value);
+void AddIntScalar(vtkDataObject* data, const char* name, long long value);
+void AddIdScalar(vtkDataObject* data, const char* name, long long value);
+void AddString(vtkDataObject* data, const char* name, const std::string& value);
+
+// vtkOriginalPointIds: the input point id of each output point.
+vtkSmartPointer<vtkIdTypeArray> MakeOriginalPointIds(const std::vector<std::int64_t>& ids);
+
+// Per triangle: AngleDistortion, QuasiConformalDilatation, LogAreaRatio.
+void AddDistortionArrays(vtkCellData* cellData, const otparam::DistortionFigures& figures);
+// Field data: FlippedTriangles, MeanAbsLogAreaRatio, MaximumAbsLogAreaRatio,
+// MeanAngleDistortion, MaximumAngleDistortion (degrees), MeanQuasiConformalDilatation,
+// MaximumQuasiConformalDilatation, each name prefixed by `prefix`.
+void AddDistortionFigures(
+  vtkDataObject* data, const otparam::DistortionFigures& figures, const std::string& prefix = "");
+
+double Seconds(std::chrono::steady_clock::time_point start);
+
+// Equal-width histogram of the finite `values` over their range: columns `<name>BinCenter`
+// and `<name>` (number of values in the bin).
+void AddHistogram(
+  vtkTable* table, const std::string& name, const std::vector<double>& values, int bins);
+
+// The solver's outputs beyond the Diracs, from the transport stage: the clipped power cells
+// (port 1), the Brenier potential over them (port 2), the Legendre dual (port 3) and the
+// discontinuity set of the map for a target supported on `support` (port 4).
+void WritePowerCells(const otparam::TransportStage& transport, vtkPolyData* output);
+void WriteBrenierPotential(const otparam::TransportStage& transport,
+  const std::vector<otparam::Vec2>& diracs, vtkPolyData* output);
+void WriteLegendreDual(const otparam::TransportStage& transport,
+  const std::vector<otparam::Vec2>& diracs, vtkCellArray* triangles, vtkPolyData* output);
+void WriteDiscontinuities(const otparam::TransportStage& transport,
+  const std::vector<otparam::Vec2>& diracs, const std::vector<otparam::Triangle>& support,
+  vtkPolyData* output);
+
+} // namespace otparam_vtk
+
+#endif
