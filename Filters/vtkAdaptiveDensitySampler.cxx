@@ -36,6 +36,10 @@ using namespace otparam_vtk;
 //------------------------------------------------------------------------------
 vtkAdaptiveDensitySampler::vtkAdaptiveDensitySampler()
 {
+  const otparam::SamplerOptions defaults;
+  this->NumberOfSamples = static_cast<int>(defaults.numberOfSamples);
+  this->MinimumAngle = defaults.minimumAngleDegrees;
+  this->MaximumNumberOfSamples = static_cast<int>(defaults.maximumNumberOfSamples);
   this->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "AreaDensity");
 }
 

@@ -137,10 +137,12 @@ protected:
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int Execute(vtkInformationVector** inputVector, vtkInformationVector* outputVector) override;
 
-  int NumberOfSamples = 1000;
+  // NumberOfSamples, MinimumAngle and MaximumNumberOfSamples: the core's SamplerOptions
+  // defaults, set by the constructor.
+  int NumberOfSamples;
   int SamplingMode = ADAPTIVE;
-  double MinimumAngle = 30.0;
-  int MaximumNumberOfSamples = 10000000;
+  double MinimumAngle;
+  int MaximumNumberOfSamples;
   int SizeRule = SQRT_DENSITY;
 
 private:

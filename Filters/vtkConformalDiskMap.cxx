@@ -29,7 +29,12 @@ vtkStandardNewMacro(vtkConformalDiskMap);
 using namespace otparam_vtk;
 
 //------------------------------------------------------------------------------
-vtkConformalDiskMap::vtkConformalDiskMap() = default;
+vtkConformalDiskMap::vtkConformalDiskMap()
+{
+  const otparam::ConformalDiskMapOptions defaults;
+  this->Tolerance = defaults.tolerance;
+  this->MaximumNumberOfIterations = defaults.maximumNumberOfIterations;
+}
 
 //------------------------------------------------------------------------------
 vtkConformalDiskMap::~vtkConformalDiskMap() = default;

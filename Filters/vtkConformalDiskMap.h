@@ -100,8 +100,9 @@ protected:
 
   vtkIdType CenterPointId = -1;
   vtkIdType AlignPointId = -1;
-  double Tolerance = 1e-6;
-  int MaximumNumberOfIterations = 100;
+  // The core's ConformalDiskMapOptions defaults, set by the constructor.
+  double Tolerance;
+  int MaximumNumberOfIterations;
 
 private:
   vtkConformalDiskMap(const vtkConformalDiskMap&) = delete;

@@ -194,6 +194,10 @@ vtkSemiDiscreteOTSolver::vtkSemiDiscreteOTSolver()
 {
   this->SetNumberOfInputPorts(2);
   this->SetNumberOfOutputPorts(NumberOfOutputs);
+  const otparam::OTOptions defaults;
+  this->Tolerance = defaults.tolerance;
+  this->MaximumNumberOfIterations = defaults.maximumNumberOfIterations;
+  this->MaximumArcAngle = otparam::DefaultMaximumArcAngle;
 }
 
 //------------------------------------------------------------------------------

@@ -116,9 +116,10 @@ protected:
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int Execute(vtkInformationVector** inputVector, vtkInformationVector* outputVector) override;
 
-  double Tolerance = 1e-10;
-  int MaximumNumberOfIterations = 200;
-  double MaximumArcAngle = 0.05;
+  // The core's OTOptions defaults and DefaultMaximumArcAngle, set by the constructor.
+  double Tolerance;
+  int MaximumNumberOfIterations;
+  double MaximumArcAngle;
 
 private:
   vtkSemiDiscreteOTSolver(const vtkSemiDiscreteOTSolver&) = delete;

@@ -1,19 +1,13 @@
-// Benchmark of the whole area-preserving parameterization (the stages vtkAreaPreservingParam
-// runs, called on the core directly) on the shared meshes: seconds per stage and in total
-// (median of the runs), peak memory, the scorer's figures, and CGAL's iterative authalic map
+// Benchmark of the whole area-preserving parameterization (parameterizeDisk, the pipeline
+// vtkAreaPreservingParam and the command line run) on the shared meshes: seconds per stage and in
+// total (median of the runs), peak memory, the scorer's figures, and CGAL's iterative authalic map
 // from reference-figures.md beside them.
 //
 //   otparam_param_benchmark [--repeat R] [--samples N] [--correction-decrease F]
 //                           [--no-correction] [mesh ...]   (default: every shared mesh)
-#include "Sampling/PlanarSampler.h"
-#include "Composition/DiskComposition.h"
-#include "Conformal/ConformalDiskMap.h"
-#include "Sampling/PlanarDensityField.h"
 #include "ForkedRun.h"
 #include "MeshFiles.h"
-#include "Mesh/DistortionMetrics.h"
-#include "Transport/SemiDiscreteOT.h"
-#include "Mesh/SurfaceMesh.h"
+#include "Pipeline/AreaPreservingPipeline.h"
 
 #include <chrono>
 #include <cstdio>
@@ -60,64 +54,28 @@ struct Row
   long long flipsInterpolated, flips;
 };
 
-Row run(const SurfaceMesh& mesh, long long numberOfSamples, const CompositionOptions& options)
+Row run(const TriangleSoup& mesh, const AreaPreservingOptions& options)
 {
   Row row{};
-  const auto t0 = Clock::now();
-  std::vector<int> loop;
-  if (!checkDiskTopology(mesh, loop).empty())
-    return row;
-  const ConformalDiskMapResult map = computeConformalDiskMap(mesh, loop);
-  std::vector<double> perTriangle, perPoint;
-  computeAreaDensity(mesh, map.uv, perTriangle, perPoint);
-  row.conformal = seconds(t0);
-
-  auto t = Clock::now();
-  std::string error;
-  const auto field = DensityField::create(map.uv, mesh.triangles, {}, perTriangle, error);
-  if (!field)
-    return row;
-  SamplerOptions samplerOptions;
-  samplerOptions.numberOfSamples = numberOfSamples;
-  const SamplerResult samples = sampleDensity(*field, samplerOptions);
-  row.sampler = seconds(t);
-  row.samples = static_cast<int>(samples.samples.size());
-
-  t = Clock::now();
-  const auto disk = makeUnitDiskSource();
-  // As vtkAreaPreservingParam: samples whose cell integrated to 0 are left out.
-  std::vector<Vec2> diracs;
-  std::vector<double> masses;
-  for (size_t i = 0; i < samples.samples.size(); ++i)
-  {
-    if (samples.mass[i] > 0.0)
-    {
-      diracs.push_back(samples.samples[i]);
-      masses.push_back(samples.mass[i]);
-    }
-  }
-  const OTResult ot = solveSemiDiscreteOT(*disk, diracs, masses);
-  row.transport = seconds(t);
-  row.iterations = ot.iterations;
-  row.converged = ot.converged;
-  row.relativeError = ot.relativeError;
-
-  t = Clock::now();
-  const CompositionResult composed =
-    composeWithInverseTransport(mesh, map.uv, loop, diracs, ot.centroids, options);
-  row.composition = seconds(t);
-  row.total = seconds(t0);
-  row.sweeps = composed.correctionSweeps;
-  row.interpolatedArea = composed.meanAbsLogAreaRatioInterpolated;
-  row.flipsInterpolated = composed.flippedAfterInterpolation;
-
-  const DistortionFigures figures = measureDistortion(mesh, composed.uv);
-  row.area = figures.meanAbsLogAreaRatio;
-  row.areaMax = figures.maximumAbsLogAreaRatio;
-  row.angle = figures.meanAngleDistortionDegrees;
-  row.flips = figures.flippedTriangles;
+  const AreaPreservingResult map = parameterizeDisk(mesh, options);
+  row.ok = map.status.ok();
+  row.conformal = map.secondsConformal;
+  row.sampler = map.secondsSampling;
+  row.transport = map.secondsTransport;
+  row.composition = map.secondsComposition;
+  row.total = map.secondsTotal;
+  row.samples = static_cast<int>(map.sampling.result.samples.size());
+  row.iterations = map.transport.result.iterations;
+  row.converged = map.transport.result.converged;
+  row.relativeError = map.transport.result.relativeError;
+  row.sweeps = map.composition.correctionSweeps;
+  row.interpolatedArea = map.composition.meanAbsLogAreaRatioInterpolated;
+  row.flipsInterpolated = map.composition.flippedAfterInterpolation;
+  row.area = map.figures.meanAbsLogAreaRatio;
+  row.areaMax = map.figures.maximumAbsLogAreaRatio;
+  row.angle = map.figures.meanAngleDistortionDegrees;
+  row.flips = map.figures.flippedTriangles;
   row.peak = benchmark::peakMiB();
-  row.ok = composed.error.empty();
   return row;
 }
 } // namespace
@@ -125,19 +83,18 @@ Row run(const SurfaceMesh& mesh, long long numberOfSamples, const CompositionOpt
 int main(int argc, char** argv)
 {
   int repeat = 3;
-  long long numberOfSamples = 5000; // vtkAreaPreservingParam's default
-  CompositionOptions options;
+  AreaPreservingOptions options; // vtkAreaPreservingParam's defaults
   std::vector<std::string> meshes;
   for (int i = 1; i < argc; ++i)
   {
     if (!std::strcmp(argv[i], "--repeat") && i + 1 < argc)
       repeat = std::max(1, std::atoi(argv[++i]));
     else if (!std::strcmp(argv[i], "--samples") && i + 1 < argc)
-      numberOfSamples = std::atoll(argv[++i]);
+      options.sampling.numberOfSamples = std::atoll(argv[++i]);
     else if (!std::strcmp(argv[i], "--correction-decrease") && i + 1 < argc)
-      options.correctionRelativeDecrease = std::atof(argv[++i]);
+      options.composition.correctionRelativeDecrease = std::atof(argv[++i]);
     else if (!std::strcmp(argv[i], "--no-correction"))
-      options.correctAreas = false;
+      options.composition.correctAreas = false;
     else
       meshes.push_back(argv[i]);
   }
@@ -150,20 +107,19 @@ int main(int argc, char** argv)
               "density field + adaptive sampling, transport = semi-discrete OT to 1e-10,\n"
               "composition = interpolation + untangling + area correction; area = mean |log area\n"
               "ratio| before (interp) and after the correction; peak memory of the process)\n\n",
-    numberOfSamples, repeat);
+    options.sampling.numberOfSamples, repeat);
   std::printf("| mesh | vertices | samples | conformal | sampler | transport | composition | total "
               "| MiB | its | rel. error | flips interp/final | area interp | area | area max | "
               "angle | sweeps | CGAL IA area | CGAL IA s |\n"
               "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const auto& name : meshes)
   {
-    const SurfaceMesh mesh = testing::readMesh(testing::sharedMesh(name));
+    const TriangleSoup mesh = testing::readSoup(testing::sharedMesh(name));
     std::vector<Row> rows;
     for (int r = 0; r < repeat; ++r)
     {
       Row row{};
-      if (!benchmark::runInChild([&] { return run(mesh, numberOfSamples, options); }, row) ||
-        !row.ok)
+      if (!benchmark::runInChild([&] { return run(mesh, options); }, row) || !row.ok)
       {
         std::printf("| %s | failed |\n", name.c_str());
         break;

@@ -23,6 +23,21 @@ inline std::string sharedMesh(const std::string& name)
   return std::string(OTPARAM_SHARED_MESH_DIR) + "/" + name;
 }
 
+SurfaceMesh readMesh(const std::string& path);
+
+// The file as a soup (the pipeline's input: unreferenced points are its to drop).
+inline TriangleSoup readSoup(const std::string& path)
+{
+  const SurfaceMesh mesh = readMesh(path);
+  TriangleSoup soup;
+  soup.points = mesh.points;
+  for (const Triangle& t : mesh.triangles)
+  {
+    soup.triangles.push_back({ t[0], t[1], t[2] });
+  }
+  return soup;
+}
+
 inline SurfaceMesh readMesh(const std::string& path)
 {
   std::ifstream in(path);

@@ -17,6 +17,13 @@ struct SurfaceMesh
   std::vector<Triangle> triangles;
 };
 
+// A triangle surface as files and VTK hold it: any point ids, possibly unreferenced points.
+struct TriangleSoup
+{
+  std::vector<Vec3> points;
+  std::vector<std::array<std::int64_t, 3>> triangles;
+};
+
 // The referenced part of a triangle soup: points used by no triangle are dropped.
 struct CompactedMesh
 {

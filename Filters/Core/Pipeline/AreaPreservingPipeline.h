@@ -20,8 +20,8 @@ struct AreaPreservingOptions
   ConformalStageOptions conformal;
   SamplerOptions sampling; // numberOfSamples 5000: see the constructor
   OTOptions transport;
-  double maximumArcAngle = 0.05; // arcs of the circle in the cells whose middles the
-                                 // boundary samples go to
+  // Arcs of the circle in the cells whose middles the boundary samples go to.
+  double maximumArcAngle = DefaultMaximumArcAngle;
   CompositionOptions composition;
   // Called with (stage name, fraction of the whole run done); returning false aborts.
   std::function<bool(const char*, double)> progress;

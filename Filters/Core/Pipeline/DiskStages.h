@@ -23,13 +23,6 @@
 namespace otparam
 {
 
-// A triangle surface as files and VTK hold it: any point ids, possibly unreferenced points.
-struct TriangleSoup
-{
-  std::vector<Vec3> points;
-  std::vector<std::array<std::int64_t, 3>> triangles;
-};
-
 // ---- Stage 1: surface -> unit disk, conformally.
 struct ConformalStageOptions
 {

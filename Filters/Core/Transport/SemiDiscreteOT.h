@@ -76,8 +76,12 @@ struct PowerDiagramGeometry
   std::vector<Edge> edges;
 };
 
+// Largest angle (radians) of the pieces the arcs of the unit circle are drawn with.
+constexpr double DefaultMaximumArcAngle = 0.05;
+
 PowerDiagramGeometry computePowerDiagramGeometry(const SourceMeasure& source,
-  const std::vector<Vec2>& diracs, const std::vector<double>& heights, double maxArcAngle = 0.05);
+  const std::vector<Vec2>& diracs, const std::vector<double>& heights,
+  double maxArcAngle = DefaultMaximumArcAngle);
 
 } // namespace otparam
 
