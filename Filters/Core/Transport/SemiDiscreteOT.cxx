@@ -1,6 +1,6 @@
 #include "Transport/SemiDiscreteOT.h"
 
-#include "Common/SparseCholesky.h"
+#include "Transport/DampedNewton.h"
 #include "Transport/MultiscaleStart.h"
 #include "Transport/PlanarPowerDiagram.h"
 
@@ -26,14 +26,10 @@ double secondsSince(Clock::time_point t0)
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-struct Evaluation
+// The Newton evaluation plus each cell's moment (its centroid times its mass).
+struct Evaluation : NewtonEvaluation
 {
-  std::vector<double> cellMass;
   std::vector<Vec2> moment;
-  // Hessian coefficients mu(W_i ∩ W_j) / |y_i - y_j| for neighbouring cells, i < j.
-  std::vector<Eigen::Triplet<double>> coupling;
-  double minMass = 0.0;
-  int emptyCells = 0;
 };
 
 // The source box, a little larger so that its edges never touch the domain.
@@ -49,7 +45,7 @@ void sourceBox(const SourceMeasure& source, Vec2& lo, Vec2& hi)
 // whenHidden is FindAll, a hidden Dirac (empty cell) ends the evaluation early with all masses
 // 0: a Newton trial is then rejected anyway, without paying for the integration.
 void evaluate(const SourceMeasure& source, const std::vector<Vec2>& diracs,
-  const std::vector<Height>& heights, PowerDiagram& diagram, Evaluation& ev, OTResult& timing,
+  const std::vector<Height>& heights, PowerDiagram& diagram, Evaluation& ev, NewtonReport& timing,
   PowerDiagram::WhenHidden whenHidden = PowerDiagram::WhenHidden::StopAtFirst,
   bool withCouplings = true)
 {
@@ -127,18 +123,6 @@ void evaluate(const SourceMeasure& source, const std::vector<Vec2>& diracs,
   timing.secondsIntegration += secondsSince(t0);
 }
 
-// Diagonal of the Newton Hessian: the sum of each Dirac's couplings.
-std::vector<double> hessianDiagonal(int n, const std::vector<Eigen::Triplet<double>>& coupling)
-{
-  std::vector<double> diagonal(n, 0.0);
-  for (const auto& c : coupling)
-  {
-    diagonal[c.row()] += c.value();
-    diagonal[c.col()] += c.value();
-  }
-  return diagonal;
-}
-
 // True when the trial heights certainly hide a Dirac, found without a triangulation: Dirac i is
 // hidden when its lifted point (y_i, h_i) lies above the plane through the lifted points of
 // three others whose triangle contains y_i (it is then not a vertex of the lower hull). The
@@ -201,184 +185,64 @@ bool certainlyHidesADirac(
   return found > 0;
 }
 
-double relativeError(const std::vector<double>& cellMass, const std::vector<double>& mass)
-{
-  double err = 0.0;
-  for (size_t i = 0; i < mass.size(); ++i)
-  {
-    err = std::max(err, std::abs(cellMass[i] - mass[i]) / mass[i]);
-  }
-  return err;
-}
-
-double gradientNorm(const std::vector<double>& cellMass, const std::vector<double>& mass)
-{
-  double s = 0.0;
-  for (size_t i = 0; i < mass.size(); ++i)
-  {
-    const double g = cellMass[i] - mass[i];
-    s += g * g;
-  }
-  return std::sqrt(s);
-}
-
-// Sparse SPD solve of the graph Laplacian L d = g with one height pinned (the gauge). The
-// pinned cell absorbs the rounding of sum(cellMass) = total, so it must be the largest one.
-class NewtonSystem
+// The plane's transport problem for the damped Newton driver: trials flip the current
+// diagram's kept regular triangulation.
+class PlanarNewtonProblem final : public NewtonProblem
 {
 public:
-  explicit NewtonSystem(int pinned)
-    : Pinned(pinned)
+  PlanarNewtonProblem(const SourceMeasure& source, const std::vector<Vec2>& diracs,
+    PowerDiagram& diagram, Evaluation& ev)
+    : Source(source)
+    , Diracs(diracs)
+    , Diagram(diagram)
+    , Ev(ev)
   {
   }
 
-  // When the conjugate gradients may stop: their residual r = g - H d has |r|_2 <= relative
-  // |g|_2, or max_i |r_i| / nu_i <= perMass (0: not used). The second bounds directly what
-  // the residual adds to the next relative mass error. (A new factorization, when needed,
-  // solves exactly.)
-  struct ResidualTarget
-  {
-    double relative;
-    double perMass;
-  };
+  const NewtonEvaluation& current() const override { return this->Ev; }
 
-  // Returns false when the factorization fails.
-  bool solve(int n, const std::vector<Eigen::Triplet<double>>& coupling,
-    const std::vector<double>& g, const std::vector<double>& nu, std::vector<double>& d,
-    ResidualTarget target, OTResult& timing)
+  bool certainlyHidesADirac(const std::vector<Height>& trial, NewtonReport& timing) override
   {
-    auto t0 = Clock::now();
-    const int m = n - 1;
-    auto row = [this](int i) { return i < Pinned ? i : i - 1; };
-    std::vector<Eigen::Triplet<double>> entries;
-    entries.reserve(coupling.size() + n);
-    const std::vector<double> diagonal = hessianDiagonal(n, coupling);
-    for (const auto& c : coupling)
-    {
-      if (c.row() != Pinned && c.col() != Pinned)
-      {
-        // Lower triangle only: both factorizations read one triangle.
-        const int a = row(c.row()), b = row(c.col());
-        entries.emplace_back(std::max(a, b), std::min(a, b), -c.value());
-      }
-    }
-    Eigen::VectorXd rhs(m), inverseMass(m);
-    for (int i = 0; i < n; ++i)
-    {
-      if (i != Pinned)
-      {
-        entries.emplace_back(row(i), row(i), diagonal[i]);
-        rhs[row(i)] = g[i];
-        inverseMass[row(i)] = 1.0 / nu[i];
-      }
-    }
-    Eigen::SparseMatrix<double> L(m, m);
-    L.setFromTriplets(entries.begin(), entries.end());
-    timing.secondsAssembly += secondsSince(t0);
+    const auto start = Clock::now();
+    const bool hides = otparam::certainlyHidesADirac(this->Diagram, this->Diracs, trial);
+    timing.secondsTriangulation += secondsSince(start);
+    return hides;
+  }
 
-    t0 = Clock::now();
-    // Consecutive Newton Hessians differ little (same Diracs, nearby heights), so the last
-    // factorization preconditions conjugate gradients; a new factorization (~3.5 s at 1e6
-    // Diracs) is made only when that does not converge quickly, or when it barely did last
-    // time: the Hessians drift further from the factorized one with every step (1e6 Diracs: a
-    // run of 14 iterations was followed by one that failed after 14, 2 s lost).
-    Eigen::VectorXd x;
-    bool ok = HaveFactor && Factor.size() == m && LastCGIterations <= StaleFactorCGIterations &&
-      preconditionedCG(L, rhs, inverseMass, target, x);
-    if (!ok)
-    {
-      LastCGIterations = 0;
-      ok = Factor.compute(L);
-      HaveFactor = ok;
-      if (ok)
-      {
-        x = Factor.solve(rhs);
-        x += Factor.solve(rhs - L.selfadjointView<Eigen::Lower>() * x); // one refinement step
-      }
-    }
-    timing.secondsSolve += secondsSince(t0);
-    if (!ok || !x.allFinite())
-    {
-      return false;
-    }
-    d.assign(n, 0.0);
-    for (int i = 0; i < n; ++i)
-    {
-      if (i != Pinned)
-      {
-        d[i] = x[row(i)];
-      }
-    }
-    return true;
+  const NewtonEvaluation& evaluateTrial(
+    const std::vector<Height>& trial, NewtonReport& timing) override
+  {
+    this->TrialDiagram.takeTriangulationFrom(this->Diagram);
+    evaluate(this->Source, this->Diracs, trial, this->TrialDiagram, this->TrialEv, timing);
+    return this->TrialEv;
+  }
+
+  void acceptTrial() override
+  {
+    std::swap(this->Ev, this->TrialEv);
+    std::swap(this->Diagram, this->TrialDiagram);
   }
 
 private:
-  using SparseMatrix = Eigen::SparseMatrix<double>;
-
-  bool preconditionedCG(const SparseMatrix& L, const Eigen::VectorXd& b,
-    const Eigen::VectorXd& inverseMass, ResidualTarget target, Eigen::VectorXd& x)
-  {
-    const double bnorm = b.norm();
-    if (bnorm == 0.0)
-    {
-      x.setZero(b.size());
-      return true;
-    }
-    // How far the residual is from its target (done at <= 1).
-    auto distance = [&](const Eigen::VectorXd& r)
-    {
-      double ratio = r.norm() / (target.relative * bnorm);
-      if (target.perMass > 0.0)
-      {
-        ratio =
-          std::min(ratio, r.cwiseProduct(inverseMass).lpNorm<Eigen::Infinity>() / target.perMass);
-      }
-      return ratio;
-    };
-    const auto A = L.selfadjointView<Eigen::Lower>();
-    x = Factor.solve(b);
-    Eigen::VectorXd r = b - A * x;
-    Eigen::VectorXd z = Factor.solve(r);
-    Eigen::VectorXd p = z;
-    double rz = r.dot(z);
-    const double firstDistance = distance(r);
-    for (int k = 0; k < MaximumCGIterations; ++k)
-    {
-      const double current = distance(r);
-      if (current <= 1.0)
-      {
-        LastCGIterations = k;
-        return x.allFinite();
-      }
-      // The residual falls about geometrically: once its rate so far puts the target well
-      // beyond MaximumCGIterations, factorizing at once saves the remaining iterations (1e6
-      // Diracs: 0.14 s each; a failed run of 15 costs 2 s).
-      if (k >= 4 && current < firstDistance &&
-        k + std::log(1.0 / current) / (std::log(current / firstDistance) / k) >
-          1.5 * MaximumCGIterations)
-      {
-        return false;
-      }
-      const Eigen::VectorXd Ap = A * p;
-      const double alpha = rz / p.dot(Ap);
-      x += alpha * p;
-      r -= alpha * Ap;
-      z = Factor.solve(r);
-      const double rzNext = r.dot(z);
-      p = z + (rzNext / rz) * p;
-      rz = rzNext;
-    }
-    LastCGIterations = MaximumCGIterations;
-    return distance(r) <= 1.0 && x.allFinite();
-  }
-
-  static constexpr int MaximumCGIterations = 15;
-  static constexpr int StaleFactorCGIterations = 10;
-  int LastCGIterations = 0;
-  int Pinned;
-  bool HaveFactor = false;
-  SparseCholesky Factor;
+  const SourceMeasure& Source;
+  const std::vector<Vec2>& Diracs;
+  PowerDiagram& Diagram;
+  Evaluation& Ev;
+  PowerDiagram TrialDiagram;
+  Evaluation TrialEv;
 };
+
+void solveByNewton(const SourceMeasure& source, const std::vector<Vec2>& diracs,
+  const std::vector<double>& nu, std::vector<Height>& h, PowerDiagram& diagram, Evaluation& ev,
+  const OTOptions& options, OTResult& result)
+{
+  PlanarNewtonProblem problem(source, diracs, diagram, ev);
+  NewtonOptions newton;
+  newton.tolerance = options.tolerance;
+  newton.maximumNumberOfIterations = options.maximumNumberOfIterations;
+  newton.progress = options.progress;
+  dampedNewton(problem, nu, h, newton, result);
+}
 
 } // namespace
 
@@ -629,159 +493,14 @@ bool startHeights(const SourceMeasure& source, const std::vector<Vec2>& diracs,
   return false;
 }
 
-// Relative residuals of the Newton solves: near the solution (full steps) the direction must
-// be exact for quadratic convergence to 1e-10; while steps are damped 1e-6 suffices (measured,
-// 1e4 Diracs of contrast 1e4: 1e-4 .. 1e-8 take the same 27 iterations; 1e-2 never converged;
-// 1e-4 stalled the 6.3e4 Diracs of the coarsest level for 1e6 at relative error ~1).
-constexpr double MassFloorFactor = 0.05;
-constexpr double ExactResidual = 1e-11;
-// Above this relative error a stalled solve blames its coarse-to-fine start (the coarse levels
-// are solved to 1e-3).
-constexpr double StalledStartError = 1e-3;
-constexpr double DampedResidual = 1e-6;
-// With full steps (quadratic regime, next error ~0.1 err^2 measured at 1e6 Diracs), the
-// conjugate gradients also stop once no cell's residual exceeds QuadraticShare err^2 of its
-// mass, or ToleranceShare of the tolerance: the direction is then as good as an exact one for
-// the next error, and the 1e-11 residual in the 2-norm (which must cover cells of contrast
-// 1e4 among 1e6) is not needed while the error is still large.
-constexpr double QuadraticShare = 1e-2;
-constexpr double ToleranceShare = 0.1;
-
-// Damped Newton from heights h whose cells are all non-empty (ev evaluated at h).
-// Records histories and stops as documented in OTResult.
-void dampedNewton(const SourceMeasure& source, const std::vector<Vec2>& diracs,
-  const std::vector<double>& nu, std::vector<Height>& h, PowerDiagram& diagram, Evaluation& ev,
-  double tolerance, int maximumNumberOfIterations, const std::function<bool(int, double)>& progress,
-  OTResult& result)
-{
-  const int n = static_cast<int>(diracs.size());
-  // KMT: every accepted step keeps each cell's mass above eps0. Their convergence proof holds
-  // for any eps0 in (0, min(smallest target mass, smallest start mass)]; KMT take half of it.
-  // A tenth of that (0.05) accepts the step 1/2 where half rejected it only for the smallest
-  // cell dipping below eps0 while |g| fell by half (contrast 1e4: 1e4 Diracs 27 -> 25
-  // iterations, 1e5 36 -> 32; contrast 1e6, 1e4 Diracs: 45 -> 38). 0.005 gained nothing more.
-  const double eps0 =
-    MassFloorFactor * std::min(ev.minMass, *std::min_element(nu.begin(), nu.end()));
-  NewtonSystem system(static_cast<int>(std::max_element(nu.begin(), nu.end()) - nu.begin()));
-  std::vector<double> g(n), d;
-  std::vector<Height> trial(n);
-  Evaluation trialEv;
-  PowerDiagram trialDiagram;
-  double lastStep = 1.0;
-  for (int it = 0;; ++it)
-  {
-    result.iterations = it;
-    result.relativeError = relativeError(ev.cellMass, nu);
-    if (progress && !progress(it, result.relativeError))
-    {
-      result.aborted = true;
-      result.message = "aborted";
-      return;
-    }
-    if (result.relativeError <= tolerance)
-    {
-      result.converged = true;
-      std::ostringstream msg;
-      msg << "converged in " << it << " Newton iterations, relative error " << result.relativeError;
-      result.message = msg.str();
-      return;
-    }
-    if (n == 1)
-    {
-      result.message = "a single Dirac: its cell is the whole domain";
-      return;
-    }
-    if (it >= maximumNumberOfIterations)
-    {
-      std::ostringstream msg;
-      msg << "not converged after " << it << " Newton iterations: relative error "
-          << result.relativeError << " > tolerance " << tolerance;
-      result.message = msg.str();
-      return;
-    }
-    for (int i = 0; i < n; ++i)
-    {
-      g[i] = ev.cellMass[i] - nu[i];
-    }
-    const double gnorm = gradientNorm(ev.cellMass, nu);
-    // Far from the solution (damped steps, or cells off by more than their masses) an inexact
-    // Newton direction does as well: the last factorization preconditions conjugate gradients
-    // down to DampedResidual, and a new one is needed far less often (1e5 Diracs of contrast
-    // 1e4: solve 17 -> 11 s, same iterations).
-    const double error = result.relativeError;
-    const NewtonSystem::ResidualTarget target = lastStep < 1.0 || error >= 1.0
-      ? NewtonSystem::ResidualTarget{ DampedResidual, 0.0 }
-      : NewtonSystem::ResidualTarget{ ExactResidual,
-          std::max(ToleranceShare * tolerance, QuadraticShare * error * error) };
-    if (!system.solve(n, ev.coupling, g, nu, d, target, result))
-    {
-      result.message = "the Newton system could not be factorized (disconnected cells?)";
-      return;
-    }
-    // The full step first (quadratic convergence near the solution); after it fails, the
-    // backtracking resumes at 4x the last accepted step rather than at 1/2: every rejected
-    // trial costs a whole evaluation, and high-contrast problems need damped steps for many
-    // iterations in a row.
-    // Near the tolerance after full steps, Newton is in its quadratic regime: a step it must damp
-    // below 1/4 there meets the rounding floor of the cell masses, and further halvings only cost
-    // evaluations (with long double heights, 1e6 Diracs of contrast 1e4 stalled at 1.9e-10;
-    // every trial from 1 down to 2e-12 left the error at 1.9e-10 .. 3.3e-10, 3.5 s each).
-    const bool nearTolerance = lastStep == 1.0 && result.relativeError <= 1e3 * tolerance;
-    const double smallestStep = nearTolerance ? 0.25 : 0.0;
-    double lambda = 1.0;
-    bool accepted = false;
-    for (int trialCount = 0; trialCount < 40 && lambda >= smallestStep; ++trialCount)
-    {
-      for (int i = 0; i < n; ++i)
-      {
-        trial[i] = h[i] + lambda * d[i];
-      }
-      const auto certifying = Clock::now();
-      const bool hides = certainlyHidesADirac(diagram, diracs, trial);
-      result.secondsTriangulation += secondsSince(certifying);
-      if (!hides)
-      {
-        trialDiagram.takeTriangulationFrom(diagram);
-        evaluate(source, diracs, trial, trialDiagram, trialEv, result);
-        // KMT's rule guarantees global convergence. Near the solution |g|_2 sits at the
-        // rounding level of the largest cells while small cells still have relative errors to
-        // remove: a full step that halves the largest relative error is then accepted as well,
-        // and so is one that reaches the tolerance (1e5 Diracs, contrast 1e4, seed 3:
-        // |g|_2 = 2e-16, the full step took the error from 1.08e-10 to 6.6e-11 and was rejected
-        // at every damping).
-        const double trialError = relativeError(trialEv.cellMass, nu);
-        if (trialEv.minMass >= eps0 &&
-          (gradientNorm(trialEv.cellMass, nu) <= (1.0 - 0.5 * lambda) * gnorm ||
-            trialError <= tolerance || (lambda == 1.0 && trialError < 0.5 * result.relativeError)))
-        {
-          accepted = true;
-          break;
-        }
-      }
-      lambda = lambda == 1.0 ? std::min(0.5, 4.0 * lastStep) : 0.5 * lambda;
-    }
-    if (!accepted)
-    {
-      std::ostringstream msg;
-      msg << "Newton step rejected at every damping down to about " << 2.0 * lambda << " after "
-          << it << " iterations (relative error " << result.relativeError
-          << "; the tolerance may be below what double precision allows here)";
-      result.message = msg.str();
-      return;
-    }
-    result.gradientNormHistory.push_back(gnorm);
-    result.stepLengthHistory.push_back(lambda);
-    lastStep = lambda;
-    h.swap(trial);
-    std::swap(ev, trialEv);
-    std::swap(diagram, trialDiagram);
-  }
-}
-
 } // namespace
 
 namespace
 {
+// Above this relative error a stalled solve blames its coarse-to-fine start (the coarse levels
+// are solved to 1e-3).
+constexpr double StalledStartError = 1e-3;
+
 // solveSemiDiscreteOT for valid Diracs.
 OTResult solveValid(const SourceMeasure& source, const std::vector<Vec2>& diracs,
   const std::vector<double>& masses, const OTOptions& options)
@@ -821,8 +540,7 @@ OTResult solveValid(const SourceMeasure& source, const std::vector<Vec2>& diracs
   }
   else
   {
-    dampedNewton(source, diracs, nu, h, diagram, ev, options.tolerance,
-      options.maximumNumberOfIterations, options.progress, result);
+    solveByNewton(source, diracs, nu, h, diagram, ev, options, result);
     // The coarse-to-fine start only saves time: when Newton stalls from it far from the
     // solution, the solve starts over from the single-level start (seen with 2e4 adaptive
     // samples of a hand, whose spacing varies by 1e3, before such Diracs were kept single-level:
@@ -840,8 +558,7 @@ OTResult solveValid(const SourceMeasure& source, const std::vector<Vec2>& diracs
       startHeights(source, diracs, nu, options.tolerance, false, h, diagram, ev, result);
       if (ev.minMass > 0.0)
       {
-        dampedNewton(source, diracs, nu, h, diagram, ev, options.tolerance,
-          options.maximumNumberOfIterations, options.progress, result);
+        solveByNewton(source, diracs, nu, h, diagram, ev, options, result);
       }
       result.message = note.str() + result.message;
     }

@@ -13,6 +13,20 @@
 namespace otparam
 {
 
+// How a Newton solve went; OTResult adds the transport's fields.
+struct NewtonReport
+{
+  bool converged = false;
+  bool aborted = false;
+  int iterations = 0;
+  double relativeError = 0.0;              // max_i |cellMass_i - mass_i| / mass_i
+  std::vector<double> gradientNormHistory; // |cellMass - mass|_2 before each Newton step
+  std::vector<double> stepLengthHistory;   // accepted damping factor of each Newton step
+  std::string message;                     // why it stopped
+  // Seconds spent per stage, summed over the run.
+  double secondsTriangulation = 0, secondsIntegration = 0, secondsAssembly = 0, secondsSolve = 0;
+};
+
 struct OTOptions
 {
   double tolerance = 1e-10;            // largest relative cell-mass error accepted
@@ -26,21 +40,13 @@ struct OTOptions
   std::function<bool(int, double)> progress;
 };
 
-struct OTResult
+// The transport's result: the Newton report (convergence, histories, timings) and the cells.
+struct OTResult : NewtonReport
 {
-  bool converged = false;
-  bool aborted = false;
-  int iterations = 0;
-  double relativeError = 0.0;   // max_i |cellMass_i - mass_i| / mass_i
   std::vector<double> mass;     // target masses after rescaling to the source's total
   std::vector<double> heights;  // h_i
   std::vector<double> cellMass; // achieved cell measure
   std::vector<Vec2> centroids;  // barycentre of each clipped power cell (density-weighted)
-  std::vector<double> gradientNormHistory; // |cellMass - mass|_2 before each Newton step
-  std::vector<double> stepLengthHistory;   // accepted damping factor of each Newton step
-  std::string message;                     // why it stopped
-  // Seconds spent per stage, summed over the run.
-  double secondsTriangulation = 0, secondsIntegration = 0, secondsAssembly = 0, secondsSolve = 0;
 };
 
 // Validates diracs/masses (finite, positive, distinct) and returns an empty string or a message

@@ -1,0 +1,352 @@
+#include "Transport/DampedNewton.h"
+
+#include "Common/SparseCholesky.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+namespace otparam
+{
+
+namespace
+{
+using Clock = std::chrono::steady_clock;
+double secondsSince(Clock::time_point t0)
+{
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+double gradientNorm(const std::vector<double>& cellMass, const std::vector<double>& mass)
+{
+  double s = 0.0;
+  for (size_t i = 0; i < mass.size(); ++i)
+  {
+    const double g = cellMass[i] - mass[i];
+    s += g * g;
+  }
+  return std::sqrt(s);
+}
+
+// Sparse SPD solve of the graph Laplacian L d = g with one height pinned (the gauge). The
+// pinned cell absorbs the rounding of sum(cellMass) = total, so it must be the largest one.
+class NewtonSystem
+{
+public:
+  explicit NewtonSystem(int pinned)
+    : Pinned(pinned)
+  {
+  }
+
+  // When the conjugate gradients may stop: their residual r = g - H d has |r|_2 <= relative
+  // |g|_2, or max_i |r_i| / nu_i <= perMass (0: not used). The second bounds directly what
+  // the residual adds to the next relative mass error. (A new factorization, when needed,
+  // solves exactly.)
+  struct ResidualTarget
+  {
+    double relative;
+    double perMass;
+  };
+
+  // Returns false when the factorization fails.
+  bool solve(int n, const std::vector<Eigen::Triplet<double>>& coupling,
+    const std::vector<double>& g, const std::vector<double>& nu, std::vector<double>& d,
+    ResidualTarget target, NewtonReport& timing)
+  {
+    auto t0 = Clock::now();
+    const int m = n - 1;
+    auto row = [this](int i) { return i < Pinned ? i : i - 1; };
+    std::vector<Eigen::Triplet<double>> entries;
+    entries.reserve(coupling.size() + n);
+    const std::vector<double> diagonal = hessianDiagonal(n, coupling);
+    for (const auto& c : coupling)
+    {
+      if (c.row() != Pinned && c.col() != Pinned)
+      {
+        // Lower triangle only: both factorizations read one triangle.
+        const int a = row(c.row()), b = row(c.col());
+        entries.emplace_back(std::max(a, b), std::min(a, b), -c.value());
+      }
+    }
+    Eigen::VectorXd rhs(m), inverseMass(m);
+    for (int i = 0; i < n; ++i)
+    {
+      if (i != Pinned)
+      {
+        entries.emplace_back(row(i), row(i), diagonal[i]);
+        rhs[row(i)] = g[i];
+        inverseMass[row(i)] = 1.0 / nu[i];
+      }
+    }
+    Eigen::SparseMatrix<double> L(m, m);
+    L.setFromTriplets(entries.begin(), entries.end());
+    timing.secondsAssembly += secondsSince(t0);
+
+    t0 = Clock::now();
+    // Consecutive Newton Hessians differ little (same Diracs, nearby heights), so the last
+    // factorization preconditions conjugate gradients; a new factorization (~3.5 s at 1e6
+    // Diracs) is made only when that does not converge quickly, or when it barely did last
+    // time: the Hessians drift further from the factorized one with every step (1e6 Diracs: a
+    // run of 14 iterations was followed by one that failed after 14, 2 s lost).
+    Eigen::VectorXd x;
+    bool ok = HaveFactor && Factor.size() == m && LastCGIterations <= StaleFactorCGIterations &&
+      preconditionedCG(L, rhs, inverseMass, target, x);
+    if (!ok)
+    {
+      LastCGIterations = 0;
+      ok = Factor.compute(L);
+      HaveFactor = ok;
+      if (ok)
+      {
+        x = Factor.solve(rhs);
+        x += Factor.solve(rhs - L.selfadjointView<Eigen::Lower>() * x); // one refinement step
+      }
+    }
+    timing.secondsSolve += secondsSince(t0);
+    if (!ok || !x.allFinite())
+    {
+      return false;
+    }
+    d.assign(n, 0.0);
+    for (int i = 0; i < n; ++i)
+    {
+      if (i != Pinned)
+      {
+        d[i] = x[row(i)];
+      }
+    }
+    return true;
+  }
+
+private:
+  using SparseMatrix = Eigen::SparseMatrix<double>;
+
+  bool preconditionedCG(const SparseMatrix& L, const Eigen::VectorXd& b,
+    const Eigen::VectorXd& inverseMass, ResidualTarget target, Eigen::VectorXd& x)
+  {
+    const double bnorm = b.norm();
+    if (bnorm == 0.0)
+    {
+      x.setZero(b.size());
+      return true;
+    }
+    // How far the residual is from its target (done at <= 1).
+    auto distance = [&](const Eigen::VectorXd& r)
+    {
+      double ratio = r.norm() / (target.relative * bnorm);
+      if (target.perMass > 0.0)
+      {
+        ratio =
+          std::min(ratio, r.cwiseProduct(inverseMass).lpNorm<Eigen::Infinity>() / target.perMass);
+      }
+      return ratio;
+    };
+    const auto A = L.selfadjointView<Eigen::Lower>();
+    x = Factor.solve(b);
+    Eigen::VectorXd r = b - A * x;
+    Eigen::VectorXd z = Factor.solve(r);
+    Eigen::VectorXd p = z;
+    double rz = r.dot(z);
+    const double firstDistance = distance(r);
+    for (int k = 0; k < MaximumCGIterations; ++k)
+    {
+      const double current = distance(r);
+      if (current <= 1.0)
+      {
+        LastCGIterations = k;
+        return x.allFinite();
+      }
+      // The residual falls about geometrically: once its rate so far puts the target well
+      // beyond MaximumCGIterations, factorizing at once saves the remaining iterations (1e6
+      // Diracs: 0.14 s each; a failed run of 15 costs 2 s).
+      if (k >= 4 && current < firstDistance &&
+        k + std::log(1.0 / current) / (std::log(current / firstDistance) / k) >
+          1.5 * MaximumCGIterations)
+      {
+        return false;
+      }
+      const Eigen::VectorXd Ap = A * p;
+      const double alpha = rz / p.dot(Ap);
+      x += alpha * p;
+      r -= alpha * Ap;
+      z = Factor.solve(r);
+      const double rzNext = r.dot(z);
+      p = z + (rzNext / rz) * p;
+      rz = rzNext;
+    }
+    LastCGIterations = MaximumCGIterations;
+    return distance(r) <= 1.0 && x.allFinite();
+  }
+
+  static constexpr int MaximumCGIterations = 15;
+  static constexpr int StaleFactorCGIterations = 10;
+  int LastCGIterations = 0;
+  int Pinned;
+  bool HaveFactor = false;
+  SparseCholesky Factor;
+};
+
+// Relative residuals of the Newton solves: near the solution (full steps) the direction must
+// be exact for quadratic convergence to 1e-10; while steps are damped 1e-6 suffices (measured,
+// 1e4 Diracs of contrast 1e4: 1e-4 .. 1e-8 take the same 27 iterations; 1e-2 never converged;
+// 1e-4 stalled the 6.3e4 Diracs of the coarsest level for 1e6 at relative error ~1).
+constexpr double MassFloorFactor = 0.05;
+constexpr double ExactResidual = 1e-11;
+constexpr double DampedResidual = 1e-6;
+// With full steps (quadratic regime, next error ~0.1 err^2 measured at 1e6 Diracs), the
+// conjugate gradients also stop once no cell's residual exceeds QuadraticShare err^2 of its
+// mass, or ToleranceShare of the tolerance: the direction is then as good as an exact one for
+// the next error, and the 1e-11 residual in the 2-norm (which must cover cells of contrast
+// 1e4 among 1e6) is not needed while the error is still large.
+constexpr double QuadraticShare = 1e-2;
+constexpr double ToleranceShare = 0.1;
+
+} // namespace
+
+void dampedNewton(NewtonProblem& problem, const std::vector<double>& nu, std::vector<Height>& h,
+  const NewtonOptions& options, NewtonReport& result)
+{
+  const int n = static_cast<int>(nu.size());
+  const double tolerance = options.tolerance;
+  const int maximumNumberOfIterations = options.maximumNumberOfIterations;
+  const std::function<bool(int, double)>& progress = options.progress;
+  // KMT: every accepted step keeps each cell's mass above eps0. Their convergence proof holds
+  // for any eps0 in (0, min(smallest target mass, smallest start mass)]; KMT take half of it.
+  // A tenth of that (0.05) accepts the step 1/2 where half rejected it only for the smallest
+  // cell dipping below eps0 while |g| fell by half (contrast 1e4: 1e4 Diracs 27 -> 25
+  // iterations, 1e5 36 -> 32; contrast 1e6, 1e4 Diracs: 45 -> 38). 0.005 gained nothing more.
+  const double eps0 =
+    MassFloorFactor * std::min(problem.current().minMass, *std::min_element(nu.begin(), nu.end()));
+  NewtonSystem system(static_cast<int>(std::max_element(nu.begin(), nu.end()) - nu.begin()));
+  std::vector<double> g(n), d;
+  std::vector<Height> trial(n);
+  double lastStep = 1.0;
+  for (int it = 0;; ++it)
+  {
+    const NewtonEvaluation& ev = problem.current();
+    result.iterations = it;
+    result.relativeError = relativeError(ev.cellMass, nu);
+    if (progress && !progress(it, result.relativeError))
+    {
+      result.aborted = true;
+      result.message = "aborted";
+      return;
+    }
+    if (result.relativeError <= tolerance)
+    {
+      result.converged = true;
+      std::ostringstream msg;
+      msg << "converged in " << it << " Newton iterations, relative error " << result.relativeError;
+      result.message = msg.str();
+      return;
+    }
+    if (n == 1)
+    {
+      result.message = "a single Dirac: its cell is the whole domain";
+      return;
+    }
+    if (it >= maximumNumberOfIterations)
+    {
+      std::ostringstream msg;
+      msg << "not converged after " << it << " Newton iterations: relative error "
+          << result.relativeError << " > tolerance " << tolerance;
+      result.message = msg.str();
+      return;
+    }
+    for (int i = 0; i < n; ++i)
+    {
+      g[i] = ev.cellMass[i] - nu[i];
+    }
+    const double gnorm = gradientNorm(ev.cellMass, nu);
+    // Far from the solution (damped steps, or cells off by more than their masses) an inexact
+    // Newton direction does as well: the last factorization preconditions conjugate gradients
+    // down to DampedResidual, and a new one is needed far less often (1e5 Diracs of contrast
+    // 1e4: solve 17 -> 11 s, same iterations).
+    const double error = result.relativeError;
+    const NewtonSystem::ResidualTarget target = lastStep < 1.0 || error >= 1.0
+      ? NewtonSystem::ResidualTarget{ DampedResidual, 0.0 }
+      : NewtonSystem::ResidualTarget{ ExactResidual,
+          std::max(ToleranceShare * tolerance, QuadraticShare * error * error) };
+    if (!system.solve(n, ev.coupling, g, nu, d, target, result))
+    {
+      result.message = "the Newton system could not be factorized (disconnected cells?)";
+      return;
+    }
+    // The full step first (quadratic convergence near the solution); after it fails, the
+    // backtracking resumes at 4x the last accepted step rather than at 1/2: every rejected
+    // trial costs a whole evaluation, and high-contrast problems need damped steps for many
+    // iterations in a row.
+    // Near the tolerance after full steps, Newton is in its quadratic regime: a step it must damp
+    // below 1/4 there meets the rounding floor of the cell masses, and further halvings only cost
+    // evaluations (with long double heights, 1e6 Diracs of contrast 1e4 stalled at 1.9e-10;
+    // every trial from 1 down to 2e-12 left the error at 1.9e-10 .. 3.3e-10, 3.5 s each).
+    const bool nearTolerance = lastStep == 1.0 && result.relativeError <= 1e3 * tolerance;
+    const double smallestStep = nearTolerance ? 0.25 : 0.0;
+    double lambda = 1.0;
+    bool accepted = false;
+    for (int trialCount = 0; trialCount < 40 && lambda >= smallestStep; ++trialCount)
+    {
+      for (int i = 0; i < n; ++i)
+      {
+        trial[i] = h[i] + lambda * d[i];
+      }
+      if (!problem.certainlyHidesADirac(trial, result))
+      {
+        const NewtonEvaluation& trialEv = problem.evaluateTrial(trial, result);
+        // KMT's rule guarantees global convergence. Near the solution |g|_2 sits at the
+        // rounding level of the largest cells while small cells still have relative errors to
+        // remove: a full step that halves the largest relative error is then accepted as well,
+        // and so is one that reaches the tolerance (1e5 Diracs, contrast 1e4, seed 3:
+        // |g|_2 = 2e-16, the full step took the error from 1.08e-10 to 6.6e-11 and was rejected
+        // at every damping).
+        const double trialError = relativeError(trialEv.cellMass, nu);
+        if (trialEv.minMass >= eps0 &&
+          (gradientNorm(trialEv.cellMass, nu) <= (1.0 - 0.5 * lambda) * gnorm ||
+            trialError <= tolerance || (lambda == 1.0 && trialError < 0.5 * result.relativeError)))
+        {
+          accepted = true;
+          break;
+        }
+      }
+      lambda = lambda == 1.0 ? std::min(0.5, 4.0 * lastStep) : 0.5 * lambda;
+    }
+    if (!accepted)
+    {
+      std::ostringstream msg;
+      msg << "Newton step rejected at every damping down to about " << 2.0 * lambda << " after "
+          << it << " iterations (relative error " << result.relativeError
+          << "; the tolerance may be below what double precision allows here)";
+      result.message = msg.str();
+      return;
+    }
+    result.gradientNormHistory.push_back(gnorm);
+    result.stepLengthHistory.push_back(lambda);
+    lastStep = lambda;
+    h.swap(trial);
+    problem.acceptTrial();
+  }
+}
+
+std::vector<double> hessianDiagonal(int n, const std::vector<Eigen::Triplet<double>>& coupling)
+{
+  std::vector<double> diagonal(n, 0.0);
+  for (const auto& c : coupling)
+  {
+    diagonal[c.row()] += c.value();
+    diagonal[c.col()] += c.value();
+  }
+  return diagonal;
+}
+
+double relativeError(const std::vector<double>& cellMass, const std::vector<double>& mass)
+{
+  double err = 0.0;
+  for (size_t i = 0; i < mass.size(); ++i)
+  {
+    err = std::max(err, std::abs(cellMass[i] - mass[i]) / mass[i]);
+  }
+  return err;
+}
+
+} // namespace otparam

@@ -1,0 +1,70 @@
+// The damped Newton iteration of semi-discrete optimal transport (method.md, Algorithm 1, with
+// the Kitagawa-Merigot-Thibert step rule), written once for every pair of a power diagram and a
+// source measure: the plane (SemiDiscreteOT.cxx) and the sphere plug into it through
+// NewtonProblem, which evaluates cell masses and Hessian couplings at trial heights. Private to
+// the transport stage (Eigen in its interface).
+#ifndef OTPARAM_TRANSPORT_DAMPEDNEWTON_H
+#define OTPARAM_TRANSPORT_DAMPEDNEWTON_H
+
+#include "Transport/Height.h"
+#include "Transport/SemiDiscreteOT.h"
+
+#include <Eigen/SparseCore>
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace otparam
+{
+
+// Cell masses and Hessian couplings mu(W_i ∩ W_j) / |y_i - y_j| (i < j, neighbouring cells,
+// in row order) at some heights.
+struct NewtonEvaluation
+{
+  std::vector<double> cellMass;
+  std::vector<Eigen::Triplet<double>> coupling;
+  double minMass = 0.0;
+  int emptyCells = 0;
+};
+
+// One transport problem as the Newton iteration sees it: a current state (heights and their
+// evaluation, owned by the problem's caller) and trials.
+class NewtonProblem
+{
+public:
+  virtual ~NewtonProblem() = default;
+  virtual const NewtonEvaluation& current() const = 0;
+  // True only when the trial heights certainly hide a Dirac (empty its cell): the trial is then
+  // rejected without an evaluation. May always answer false.
+  virtual bool certainlyHidesADirac(const std::vector<Height>& trial, NewtonReport& timing) = 0;
+  // Evaluates trial heights (a hidden Dirac may end the evaluation early with all masses 0).
+  virtual const NewtonEvaluation& evaluateTrial(
+    const std::vector<Height>& trial, NewtonReport& timing) = 0;
+  // The last trial becomes the current state.
+  virtual void acceptTrial() = 0;
+};
+
+struct NewtonOptions
+{
+  double tolerance = 1e-10;
+  int maximumNumberOfIterations = 200;
+  // Called once per iteration with (iteration, relative error); return false to abort.
+  std::function<bool(int, double)> progress;
+};
+
+// Damped Newton from heights h whose cells are all non-empty (problem.current() evaluated at h)
+// to cell masses nu; h ends at the last accepted heights. Records histories and stops as
+// documented in NewtonReport.
+void dampedNewton(NewtonProblem& problem, const std::vector<double>& nu, std::vector<Height>& h,
+  const NewtonOptions& options, NewtonReport& report);
+
+// Diagonal of the Newton Hessian: the sum of each Dirac's couplings.
+std::vector<double> hessianDiagonal(int n, const std::vector<Eigen::Triplet<double>>& coupling);
+
+// max_i |cellMass_i - mass_i| / mass_i
+double relativeError(const std::vector<double>& cellMass, const std::vector<double>& mass);
+
+} // namespace otparam
+
+#endif
