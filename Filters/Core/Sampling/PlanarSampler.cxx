@@ -417,9 +417,8 @@ std::unordered_set<const void*> boundaryToDrop(const DT& dt, const DensityField&
 //   4 steps 0.10, 8 steps 0.09, 32 steps 0.066). But the boundary samples stay on the boundary,
 //   and their cells stay half as heavy as the others (0.5-0.55 of the mean).
 // - The offsets make a light boundary cell push its interior neighbours away and steer the
-//   interior to equal masses directly. Measured with 20000 samples, 4 steps: constant density,
-//   spread 0.117 -> 0.089 (boundary cells 0.56 -> 0.64 of the mean); Gaussian mixture of
-//   contrast 1e6, 0.228 -> 0.215; 1e5 samples take 4.3 s instead of 4.1.
+//   interior to equal masses directly (it narrows the spread of the masses for ~5% more time;
+//   docs/design.md).
 // - Each offset step is one Jacobi step of the mass equations, its relative mass change clamped
 //   to 50%: unclamped, cells where g varies a lot within one cell (the mixture's tails) were
 //   steered by wrong estimates and swallowed their neighbours. The last step is a plain Lloyd

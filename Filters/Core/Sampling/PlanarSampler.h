@@ -5,56 +5,12 @@
 #define OTPARAM_SAMPLING_PLANARSAMPLER_H
 
 #include "Sampling/PlanarDensityField.h"
+#include "Sampling/Sampler.h"
 
 #include <functional>
 
 namespace otparam
 {
-
-enum class SamplingMode
-{
-  Adaptive = 0,    // Delaunay refinement with the density as grading (Algorithm 2)
-  Uniform = 1,     // the same refinement with a constant grading: samples uniform over the domain
-  MeshVertices = 2 // the input mesh's own points
-};
-
-enum class SizeRule
-{
-  SqrtDensity = 0, // nu-length of a length R is R * sqrt(g) (g is an area density)
-  Density = 1      // the paper's literal R * g
-};
-
-struct SamplerOptions
-{
-  SamplingMode mode = SamplingMode::Adaptive;
-  SizeRule sizeRule = SizeRule::SqrtDensity;
-  long long numberOfSamples = 1000;            // target; the threshold eps follows from it
-  long long maximumNumberOfSamples = 10000000; // hard cap on the refinement
-  double minimumAngleDegrees = 30.0;
-  // Called with the fraction done; returning false aborts.
-  std::function<bool(double)> progress;
-};
-
-struct SamplerResult
-{
-  std::string error;   // empty on success
-  std::string warning; // e.g. the sample count could not come within 10% of the target
-  bool aborted = false;
-  bool capped = false; // the refinement stopped at maximumNumberOfSamples
-  std::vector<Vec2> samples;
-  std::vector<Triangle> triangles;  // Delaunay triangulation of the samples (mesh triangles in
-                                    // MeshVertices mode)
-  std::vector<double> mass;         // density integrated over each sample's Voronoi cell clipped
-                                    // to the domain, normalized to sum to sourceMass
-  double sourceMass = 0.0;          // pi for the unit disk, else the domain's area
-  double epsilon = 0.0;             // the nu-length threshold used (Adaptive/Uniform)
-  int refinementRuns = 0;           // runs needed to reach the target count within 10%
-  bool relaxed = false;             // Lloyd relaxation kept (it made the masses more even)
-  double minimumAngleDegrees = 0.0; // smallest angle of `triangles`
-  double massCoefficientOfVariation = 0.0;
-  double secondsRefinement = 0.0;
-  double secondsMasses = 0.0;
-};
 
 SamplerResult sampleDensity(const DensityField& density, const SamplerOptions& options);
 

@@ -85,10 +85,10 @@ public:
 
     t0 = Clock::now();
     // Consecutive Newton Hessians differ little (same Diracs, nearby heights), so the last
-    // factorization preconditions conjugate gradients; a new factorization (~3.5 s at 1e6
-    // Diracs) is made only when that does not converge quickly, or when it barely did last
-    // time: the Hessians drift further from the factorized one with every step (1e6 Diracs: a
-    // run of 14 iterations was followed by one that failed after 14, 2 s lost).
+    // factorization preconditions conjugate gradients; a new factorization (the most expensive
+    // step) is made only when that does not converge quickly, or when it barely did last time:
+    // the Hessians drift further from the factorized one with every step, and a long run of
+    // iterations is usually followed by a failed one.
     Eigen::VectorXd x;
     bool ok = HaveFactor && Factor.size() == m && LastCGIterations <= StaleFactorCGIterations &&
       preconditionedCG(L, rhs, inverseMass, target, x);
@@ -158,8 +158,7 @@ private:
         return x.allFinite();
       }
       // The residual falls about geometrically: once its rate so far puts the target well
-      // beyond MaximumCGIterations, factorizing at once saves the remaining iterations (1e6
-      // Diracs: 0.14 s each; a failed run of 15 costs 2 s).
+      // beyond MaximumCGIterations, factorizing at once saves the remaining iterations.
       if (k >= 4 && current < firstDistance &&
         k + std::log(1.0 / current) / (std::log(current / firstDistance) / k) >
           1.5 * MaximumCGIterations)
@@ -261,8 +260,7 @@ void dampedNewton(NewtonProblem& problem, const std::vector<double>& nu, std::ve
     const double gnorm = gradientNorm(ev.cellMass, nu);
     // Far from the solution (damped steps, or cells off by more than their masses) an inexact
     // Newton direction does as well: the last factorization preconditions conjugate gradients
-    // down to DampedResidual, and a new one is needed far less often (1e5 Diracs of contrast
-    // 1e4: solve 17 -> 11 s, same iterations).
+    // down to DampedResidual, and a new one is needed far less often (same iterations).
     const double error = result.relativeError;
     const NewtonSystem::ResidualTarget target = lastStep < 1.0 || error >= 1.0
       ? NewtonSystem::ResidualTarget{ DampedResidual, 0.0 }

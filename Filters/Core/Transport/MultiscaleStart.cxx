@@ -239,8 +239,8 @@ public:
     // On the circle, max over the cells' arcs of h_c + <x, y - y_c> = <x, y> - phi(x), searched
     // block by block (~sqrt(#arcs) arcs each): a block can only win where the largest <x, y> over
     // its angles minus the least phi on its arcs beats the best value found so far. The block
-    // around the direction of y, where the maximum usually is, goes first. Measured, 1e6 Diracs
-    // (2.5e5 coarse, ~1800 arcs): the fine heights took 26 s with a loop over all arcs, 3 s so.
+    // around the direction of y, where the maximum usually is, goes first (a loop over all
+    // arcs dominated the start at 1e6 Diracs).
     const double direction = angleOf(y);
     long double best = -INFINITY;
     auto searchBlock = [&](const Block& block)
@@ -346,10 +346,8 @@ bool coarseToFineHeights(const SourceMeasure& source, const std::vector<Vec2>& d
     return false;
   }
   // A random sixth (fixed seed: runs are reproducible) carries the masses of the Diracs
-  // nearest to it. Measured, 1e6 Diracs of contrast 1e4, seeds 1..3: a quarter 55 / 63.5 /
-  // 54.4 s, a sixth 52 / 51 / 55.9 s (the coarse solve 12.5 -> 6.5 s, the same 9 or 10 fine
-  // iterations; an eighth was no faster); 1e5 Diracs: ~0.3 s slower (9 fine iterations
-  // instead of 8, same hour).
+  // nearest to it: a sixth halves the coarse solve against a quarter and leaves the fine
+  // iterations as they were; an eighth was no faster (docs/design.md).
   // The Diracs' convex hull is in the coarse set, so that the coarse cells reach as far out on
   // the circle as the fine ones must.
   std::vector<int> ids(n);

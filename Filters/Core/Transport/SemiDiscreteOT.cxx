@@ -149,8 +149,8 @@ bool certainlyHidesADirac(
       continue; // hull Diracs: their cells reach infinity
     }
     const Vec2 yi = diracs[i];
-    // One fan, from the first neighbour: all fans found 32 of the 83 trials at 3e4 Diracs
-    // (contrast 1e4) and this one 27, at a third of the cost (0.37 s instead of 1.17 s).
+    // One fan, from the first neighbour: it finds most of what all fans find, at a third of
+    // the cost (docs/design.md, "Measured decisions").
     const int a = begin[0];
     const Vec2 pa = diracs[a];
     for (int m = 1; m + 1 < degree; ++m)
@@ -461,7 +461,7 @@ bool startHeights(const SourceMeasure& source, const std::vector<Vec2>& diracs,
   const auto [lightest, heaviest] = std::minmax_element(nu.begin(), nu.end());
   const bool mild = *heaviest <= MildContrast * *lightest;
   // Many Diracs of high contrast go straight to the coarse-to-fine start: their Voronoi diagram
-  // is not the solution (1e6 Diracs: one evaluation, 4 s, saved).
+  // is not the solution, and evaluating it would cost a whole evaluation.
   const bool multiscale = coarseToFine && !mild && static_cast<int>(n) >= MultiscaleMinimumDiracs;
   if (!multiscale)
   {
@@ -593,9 +593,8 @@ OTResult solveSemiDiscreteOT(const SourceMeasure& source, const std::vector<Vec2
   }
   // The solve numbers the Diracs along a Hilbert curve, so that every loop over them (the power
   // diagram's rings and vertices, the integration, the Hessian's rows) walks memory in spatial
-  // order; in the caller's order (random, for sampled points) those walks miss the cache.
-  // Measured, 1e6 random Diracs of contrast 1e4: one evaluation 2.8 -> 2.0 s, the solve
-  // 116 -> 82 s.
+  // order; in the caller's order (random, for sampled points) those walks miss the cache
+  // (a third of the solve at 1e6 Diracs; docs/design.md).
   const int n = static_cast<int>(diracs.size());
   using K = CGAL::Exact_predicates_inexact_constructions_kernel;
   std::vector<K::Point_2> points;

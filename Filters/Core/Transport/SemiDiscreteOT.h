@@ -32,9 +32,8 @@ struct OTOptions
   double tolerance = 1e-10;            // largest relative cell-mass error accepted
   int maximumNumberOfIterations = 200; // Newton iterations
   // Start from a coarse problem (MultiscaleStart.h; unit-disk source, from 2e4 Diracs up, masses
-  // of high contrast). Measured, 1e5 Diracs of contrast 1e4 (median of 3): 9 Newton iterations
-  // on the fine level and 9.4 s in all, against 31 iterations and 22 s from the shrunk Voronoi
-  // diagram.
+  // of high contrast): far fewer fine Newton iterations than from the shrunk Voronoi diagram
+  // (docs/design.md).
   bool coarseToFineStart = true;
   // Called once per Newton iteration with (iteration, relative error); return false to abort.
   std::function<bool(int, double)> progress;

@@ -1,0 +1,268 @@
+// Step 3 of the composition (DiskComposition.h): vertices moved so that every triangle gets
+// its surface area fraction. Private to the composition stage.
+#ifndef OTPARAM_COMPOSITION_AREACORRECTION_H
+#define OTPARAM_COMPOSITION_AREACORRECTION_H
+
+#include "Composition/Composition.h"
+
+#include <limits>
+
+namespace otparam
+{
+namespace composition
+{
+
+// Step 3: Gauss-Seidel sweeps of per-vertex Gauss-Newton steps on
+// sum_t A*_t log(A_t / A*_t)^2, over-relaxed, each accepted only if it lowers the star's merit
+// sum A* (r + 1/r - 2) with every triangle still positive (the merit is infinite at zero area,
+// so no step can flip a triangle). A vertex whose triangles are all within SettledLogRatio of their
+// targets is skipped until a neighbour moves: late sweeps only touch what is still wrong.
+class AreaCorrection
+{
+public:
+  AreaCorrection(const SurfaceMesh& surface, const std::vector<int>& boundaryLoop,
+    const VertexStars& stars, const std::vector<double>& surfaceFraction)
+    : Surface(surface)
+    , Stars(stars)
+    , SurfaceFraction(surfaceFraction)
+    , OnBoundary(surface.points.size(), 0)
+    , Active(surface.points.size(), 1)
+  {
+    for (int v : boundaryLoop)
+    {
+      this->OnBoundary[v] = Pinned;
+    }
+    // Boundary vertices carry the transport's own boundary map (T takes the circle onto the
+    // circle), which converges to the exact one; only the corners of ears (triangles with
+    // three boundary vertices, whose area no interior vertex can change) slide along the
+    // circle, and when polishing, vertices with a triangle still off by more than 5%.
+    // Measured on hemisphere_2k: sliding every boundary vertex takes the largest distance to
+    // Lambert's projection from 0.006 to 0.008-0.011 for 10% less area error.
+    for (const Triangle& t : surface.triangles)
+    {
+      if (this->OnBoundary[t[0]] && this->OnBoundary[t[1]] && this->OnBoundary[t[2]])
+      {
+        for (int v : t)
+        {
+          this->OnBoundary[v] = Sliding;
+        }
+      }
+    }
+    // Greedy colouring: vertices of one colour share no triangle, so they move in parallel
+    // with exactly the result of a sequential sweep in colour order.
+    std::vector<int> colour(surface.points.size(), -1);
+    for (size_t v = 0; v < colour.size(); ++v)
+    {
+      std::vector<char> taken;
+      for (int e = stars.offsets[v]; e < stars.offsets[v + 1]; ++e)
+      {
+        for (int k = 1; k < 3; ++k)
+        {
+          const int c = colour[stars.entries[e][k]];
+          if (c >= 0)
+          {
+            taken.resize(std::max(taken.size(), static_cast<size_t>(c) + 1), 0);
+            taken[c] = 1;
+          }
+        }
+      }
+      int c = 0;
+      while (c < static_cast<int>(taken.size()) && taken[c])
+      {
+        ++c;
+      }
+      colour[v] = c;
+      if (c >= static_cast<int>(this->ColourClasses.size()))
+      {
+        this->ColourClasses.resize(c + 1);
+      }
+      this->ColourClasses[c].push_back(static_cast<int>(v));
+    }
+  }
+
+  // Polishing: only vertices with a triangle off by more than `settled` move, all of them
+  // candidates again.
+  void polishFrom(double settled)
+  {
+    this->SettledLogRatio = settled;
+    this->Polishing = true;
+    std::fill(this->Active.begin(), this->Active.end(), 1);
+  }
+
+  // Returns the number of vertices moved.
+  std::int64_t sweep(std::vector<Vec2>& uv)
+  {
+    double total = 0.0;
+    for (const Triangle& t : this->Surface.triangles)
+    {
+      total += signedArea(uv[t[0]], uv[t[1]], uv[t[2]]);
+    }
+    this->TotalArea = total;
+    std::vector<char> moved(uv.size(), 0);
+    for (const std::vector<int>& vertices : this->ColourClasses)
+    {
+      const std::int64_t count = static_cast<std::int64_t>(vertices.size());
+#pragma omp parallel for schedule(static)
+      for (std::int64_t k = 0; k < count; ++k)
+      {
+        const int v = vertices[k];
+        if (this->Active[v])
+        {
+          moved[v] = this->OnBoundary[v] == Sliding ? this->moveOnCircle(v, uv)
+            : this->OnBoundary[v] == Pinned         ? this->Polishing && this->moveOnCircle(v, uv)
+                                                    : this->moveInPlane(v, uv);
+        }
+      }
+    }
+    std::fill(this->Active.begin(), this->Active.end(), 0);
+    std::int64_t movedCount = 0;
+    for (size_t v = 0; v < uv.size(); ++v)
+    {
+      if (moved[v])
+      {
+        ++movedCount;
+        this->Active[v] = 1;
+        for (int e = this->Stars.offsets[v]; e < this->Stars.offsets[v + 1]; ++e)
+        {
+          this->Active[this->Stars.entries[e][1]] = 1;
+          this->Active[this->Stars.entries[e][2]] = 1;
+        }
+      }
+    }
+    return movedCount;
+  }
+
+private:
+  static constexpr double Overrelaxation = 1.8; // measured: 1.0 needs twice the sweeps
+  double SettledLogRatio = 1e-3;
+  bool Polishing = false;
+  enum : char
+  {
+    Interior = 0,
+    Pinned = 1,
+    Sliding = 2
+  };
+
+  // The merit function of the line search: sum A* (r + 1/r - 2), like log(r)^2 symmetric in
+  // log r, minimal at r = 1 and infinite at r = 0, but without a logarithm (the sweeps spent
+  // a fifth of their time in std::log). +infinity if a triangle would not be positive.
+  static double merit(double area, double target)
+  {
+    const double r = area / target;
+    return target * (r + 1.0 / r - 2.0);
+  }
+
+  double starMerit(int v, Vec2 p, const std::vector<Vec2>& uv) const
+  {
+    double total = 0.0;
+    for (int e = this->Stars.offsets[v]; e < this->Stars.offsets[v + 1]; ++e)
+    {
+      const auto& entry = this->Stars.entries[e];
+      const double target = this->SurfaceFraction[entry[0]] * this->TotalArea;
+      const double area = signedArea(p, uv[entry[1]], uv[entry[2]]);
+      if (!(area > 0.0))
+      {
+        return HUGE_VAL;
+      }
+      total += merit(area, target);
+    }
+    return total;
+  }
+
+  bool moveInPlane(int v, std::vector<Vec2>& uv) const
+  {
+    const Vec2 p = uv[v];
+    double gx = 0.0, gy = 0.0, hxx = 0.0, hxy = 0.0, hyy = 0.0, energy = 0.0, worst = 0.0;
+    for (int e = this->Stars.offsets[v]; e < this->Stars.offsets[v + 1]; ++e)
+    {
+      const auto& entry = this->Stars.entries[e];
+      const Vec2 b = uv[entry[1]], c = uv[entry[2]];
+      const double target = this->SurfaceFraction[entry[0]] * this->TotalArea;
+      const double area = signedArea(p, b, c);
+      if (!(area > 0.0))
+      {
+        return false; // only an untangled star can be corrected
+      }
+      // d(log area)/dp for area = cross(b - p, c - p) / 2
+      const Vec2 d = b - c;
+      const double ax = 0.5 * d.y / area, ay = -0.5 * d.x / area;
+      const double residual = std::log(area / target);
+      energy += merit(area, target);
+      worst = std::max(worst, std::abs(residual));
+      gx += target * residual * ax;
+      gy += target * residual * ay;
+      hxx += target * ax * ax;
+      hxy += target * ax * ay;
+      hyy += target * ay * ay;
+    }
+    const double det = hxx * hyy - hxy * hxy;
+    if (worst < SettledLogRatio || !(det > 1e-12 * (hxx * hyy)) || !(hxx > 0.0))
+    {
+      return false;
+    }
+    const Vec2 step = { -(hyy * gx - hxy * gy) / det, -(-hxy * gx + hxx * gy) / det };
+    return this->acceptDecrease(v, uv, energy, [&](double lambda) { return p + lambda * step; });
+  }
+
+  bool moveOnCircle(int v, std::vector<Vec2>& uv) const
+  {
+    const Vec2 p = uv[v];
+    const double angle = std::atan2(p.y, p.x);
+    const Vec2 tangent = { -p.y, p.x };
+    double first = 0.0, second = 0.0, energy = 0.0, worst = 0.0;
+    for (int e = this->Stars.offsets[v]; e < this->Stars.offsets[v + 1]; ++e)
+    {
+      const auto& entry = this->Stars.entries[e];
+      const Vec2 b = uv[entry[1]], c = uv[entry[2]];
+      const double target = this->SurfaceFraction[entry[0]] * this->TotalArea;
+      const double area = signedArea(p, b, c);
+      if (!(area > 0.0))
+      {
+        return false;
+      }
+      const Vec2 d = b - c;
+      const double slope = dot(Vec2{ 0.5 * d.y, -0.5 * d.x }, tangent) / area; // d log(area)
+      const double residual = std::log(area / target);
+      energy += merit(area, target);
+      worst = std::max(worst, std::abs(residual));
+      first += target * residual * slope;
+      second += target * slope * slope;
+    }
+    if (worst < this->SettledLogRatio || !(second > 0.0))
+    {
+      return false;
+    }
+    const double step = -first / second;
+    return this->acceptDecrease(v, uv, energy,
+      [&](double lambda) {
+        return Vec2{ std::cos(angle + lambda * step), std::sin(angle + lambda * step) };
+      });
+  }
+
+  template <typename Trial>
+  bool acceptDecrease(int v, std::vector<Vec2>& uv, double before, const Trial& trial) const
+  {
+    for (double lambda = Overrelaxation; lambda > 1e-3; lambda *= 0.5)
+    {
+      const Vec2 candidate = trial(lambda);
+      if (this->starMerit(v, candidate, uv) < before)
+      {
+        uv[v] = candidate;
+        return true;
+      }
+    }
+    return false;
+  }
+
+  const SurfaceMesh& Surface;
+  const VertexStars& Stars;
+  const std::vector<double>& SurfaceFraction;
+  std::vector<char> OnBoundary, Active;
+  std::vector<std::vector<int>> ColourClasses;
+  double TotalArea = 0.0;
+};
+
+} // namespace composition
+} // namespace otparam
+
+#endif

@@ -1,0 +1,126 @@
+// What the steps of the composition T^-1 o phi share: the stars of the mesh's vertices, the
+// surface area fractions the map must give every triangle, and the figures of a map. The
+// steps themselves: SampleInterpolation.h, Untangling.h, AreaCorrection.h; the disk's driver:
+// DiskComposition.h. Private to the composition stage.
+#ifndef OTPARAM_COMPOSITION_COMPOSITION_H
+#define OTPARAM_COMPOSITION_COMPOSITION_H
+
+#include "Common/Geometry.h"
+#include "Mesh/SurfaceMesh.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numeric>
+#include <vector>
+
+namespace otparam
+{
+namespace composition
+{
+
+constexpr double OnCircleTolerance = 1e-9;
+
+inline double signedArea(Vec2 a, Vec2 b, Vec2 c)
+{
+  return 0.5 * cross(b - a, c - a);
+}
+
+inline Vec2 normalized(Vec2 p)
+{
+  const double r = norm(p);
+  return r > 0.0 ? (1.0 / r) * p : Vec2{ 1.0, 0.0 };
+}
+
+inline bool onCircle(Vec2 p)
+{
+  return std::abs(norm(p) - 1.0) <= OnCircleTolerance;
+}
+
+// Incident triangles of every vertex (compressed rows), each with the other two corners in
+// the triangle's own (counter-clockwise) order.
+struct VertexStars
+{
+  std::vector<int> offsets;
+  std::vector<std::array<int, 3>> entries; // {triangle, next corner, corner after that}
+
+  VertexStars(size_t numberOfPoints, const std::vector<Triangle>& triangles)
+    : offsets(numberOfPoints + 1, 0)
+  {
+    for (const Triangle& t : triangles)
+    {
+      for (int v : t)
+      {
+        ++offsets[v + 1];
+      }
+    }
+    std::partial_sum(offsets.begin(), offsets.end(), offsets.begin());
+    entries.resize(offsets.back());
+    std::vector<int> fill(offsets.begin(), offsets.end() - 1);
+    for (size_t ti = 0; ti < triangles.size(); ++ti)
+    {
+      const Triangle& t = triangles[ti];
+      for (int k = 0; k < 3; ++k)
+      {
+        entries[fill[t[k]]++] = { static_cast<int>(ti), t[(k + 1) % 3], t[(k + 2) % 3] };
+      }
+    }
+  }
+};
+
+// Area fraction of each triangle on the surface.
+inline std::vector<double> surfaceAreaFractions(const SurfaceMesh& surface)
+{
+  std::vector<double> fraction(surface.triangles.size());
+  double total = 0.0;
+  for (size_t t = 0; t < fraction.size(); ++t)
+  {
+    fraction[t] = triangleArea(surface, surface.triangles[t]);
+    total += fraction[t];
+  }
+  for (double& f : fraction)
+  {
+    f /= total;
+  }
+  return fraction;
+}
+
+inline double meanAbsLogAreaRatio(const std::vector<Triangle>& triangles,
+  const std::vector<Vec2>& uv, const std::vector<double>& surfaceFraction)
+{
+  double total = 0.0;
+  std::vector<double> area(triangles.size());
+  for (size_t t = 0; t < triangles.size(); ++t)
+  {
+    const Triangle& tri = triangles[t];
+    area[t] = std::abs(signedArea(uv[tri[0]], uv[tri[1]], uv[tri[2]]));
+    total += area[t];
+  }
+  double mean = 0.0;
+  for (size_t t = 0; t < triangles.size(); ++t)
+  {
+    const double ratio = std::max(area[t], 1e-300) / total / surfaceFraction[t];
+    mean += surfaceFraction[t] * std::abs(std::log(ratio));
+  }
+  return mean;
+}
+
+inline std::vector<int> flippedTriangles(
+  const std::vector<Triangle>& triangles, const std::vector<Vec2>& uv)
+{
+  std::vector<int> flipped;
+  for (size_t t = 0; t < triangles.size(); ++t)
+  {
+    const Triangle& tri = triangles[t];
+    if (!(signedArea(uv[tri[0]], uv[tri[1]], uv[tri[2]]) > 0.0))
+    {
+      flipped.push_back(static_cast<int>(t));
+    }
+  }
+  return flipped;
+}
+
+} // namespace composition
+} // namespace otparam
+
+#endif

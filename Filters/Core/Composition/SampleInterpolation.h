@@ -1,0 +1,120 @@
+// Step 1 of the composition (DiskComposition.h): the sample images interpolated at every mesh
+// point over the samples' Delaunay triangulation. Private to the composition stage.
+#ifndef OTPARAM_COMPOSITION_SAMPLEINTERPOLATION_H
+#define OTPARAM_COMPOSITION_SAMPLEINTERPOLATION_H
+
+#include "Composition/Composition.h"
+
+#include <CGAL/Delaunay_triangulation_2.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
+
+namespace otparam
+{
+namespace composition
+{
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Point = K::Point_2;
+using Vb = CGAL::Triangulation_vertex_base_with_info_2<int, K>; // info: sample index
+using Fb = CGAL::Triangulation_face_base_2<K>;
+using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
+using DT = CGAL::Delaunay_triangulation_2<K, Tds>;
+
+// Step 1: piecewise-linear interpolation of the sample images at every mesh point.
+class SampleInterpolant
+{
+public:
+  SampleInterpolant(const std::vector<Vec2>& samples, const std::vector<Vec2>& images)
+    : Images(images)
+  {
+    std::vector<std::pair<Point, int>> points;
+    points.reserve(samples.size());
+    for (size_t i = 0; i < samples.size(); ++i)
+    {
+      points.emplace_back(Point(samples[i].x, samples[i].y), static_cast<int>(i));
+      if (onCircle(samples[i]))
+      {
+        // T maps the circle onto the circle: a boundary sample's preimage is on it too.
+        this->Images[i] = normalized(images[i]);
+      }
+    }
+    this->Triangulation.insert(points.begin(), points.end());
+  }
+
+  // Returns the image of p; `outsideHull` tells whether p lay outside the samples' hull.
+  Vec2 operator()(Vec2 p, bool& outsideHull)
+  {
+    DT::Locate_type type;
+    int li = 0;
+    const Point q(p.x, p.y);
+    DT::Face_handle face = this->Triangulation.locate(q, type, li, this->Hint);
+    outsideHull = false;
+    if (type == DT::VERTEX)
+    {
+      this->Hint = face;
+      return this->Images[face->vertex(li)->info()];
+    }
+    if (this->Triangulation.is_infinite(face) && type == DT::EDGE)
+    {
+      face = face->neighbor(li); // on a hull edge: use the finite side
+    }
+    if (!this->Triangulation.is_infinite(face))
+    {
+      this->Hint = face;
+      const Vec2 a = this->position(face, 0), b = this->position(face, 1),
+                 c = this->position(face, 2);
+      const double area = cross(b - a, c - a);
+      const double wa = cross(b - p, c - p) / area, wb = cross(c - p, a - p) / area;
+      const double wc = 1.0 - wa - wb;
+      return wa * this->image(face, 0) + wb * this->image(face, 1) + wc * this->image(face, 2);
+    }
+    outsideHull = true;
+    const int infiniteIndex = face->index(this->Triangulation.infinite_vertex());
+    const int ia = DT::ccw(infiniteIndex), ib = DT::cw(infiniteIndex);
+    this->Hint = face->neighbor(infiniteIndex);
+    return this->beyondHullEdge(p, this->position(face, ia), this->position(face, ib),
+      this->image(face, ia), this->image(face, ib));
+  }
+
+private:
+  Vec2 position(DT::Face_handle f, int k) const
+  {
+    const Point& q = f->vertex(k)->point();
+    return { q.x(), q.y() };
+  }
+  Vec2 image(DT::Face_handle f, int k) const { return this->Images[f->vertex(k)->info()]; }
+
+  // p lies beyond the hull edge ab. When a and b are on the circle, p is in the circular
+  // segment they cut off: it goes along the chord like the interpolant (so the map stays
+  // continuous) and radially from the image chord to the circle in the same proportion (so
+  // points on the circle stay on it). Otherwise the nearest point of the edge is used.
+  static Vec2 beyondHullEdge(Vec2 p, Vec2 a, Vec2 b, Vec2 imageA, Vec2 imageB)
+  {
+    const Vec2 ab = b - a;
+    if (onCircle(a) && onCircle(b) && std::abs(cross(ab, p)) > 0.0)
+    {
+      const double scale = cross(ab, a) / cross(ab, p); // p * scale is on the chord
+      const Vec2 onChord = scale * p;
+      const double along = std::clamp(dot(onChord - a, ab) / dot(ab, ab), 0.0, 1.0);
+      const Vec2 imageOnChord = (1.0 - along) * imageA + along * imageB;
+      const double chordRadius = norm(onChord), imageChordRadius = norm(imageOnChord);
+      const double blend = chordRadius < 1.0
+        ? std::clamp((norm(p) - chordRadius) / (1.0 - chordRadius), 0.0, 1.0)
+        : 1.0;
+      const double radius = imageChordRadius + blend * (1.0 - imageChordRadius);
+      return radius * normalized(imageOnChord);
+    }
+    const double along = std::clamp(dot(p - a, ab) / std::max(dot(ab, ab), 1e-300), 0.0, 1.0);
+    return (1.0 - along) * imageA + along * imageB;
+  }
+
+  DT Triangulation;
+  std::vector<Vec2> Images;
+  DT::Face_handle Hint;
+};
+
+} // namespace composition
+} // namespace otparam
+
+#endif

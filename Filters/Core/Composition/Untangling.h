@@ -1,0 +1,202 @@
+// Step 2 of the composition (DiskComposition.h): flipped triangles untangled. Private to the
+// composition stage.
+#ifndef OTPARAM_COMPOSITION_UNTANGLING_H
+#define OTPARAM_COMPOSITION_UNTANGLING_H
+
+#include "Composition/Composition.h"
+
+#include <limits>
+
+namespace otparam
+{
+namespace composition
+{
+
+// Step 2: optimization-based untangling (Freitag and Plassmann): each vertex of a flipped
+// triangle moves to the point of its star that maximizes the smallest signed area of its
+// triangles, which lies in the kernel of the star's rim whenever that kernel is not empty.
+// A vertex whose rim is itself tangled cannot be fixed alone, so the set grows by one ring
+// every few rounds. Returns the number of vertices moved.
+class Untangler
+{
+public:
+  Untangler(
+    const SurfaceMesh& surface, const std::vector<int>& boundaryLoop, const VertexStars& stars)
+    : Surface(surface)
+    , Stars(stars)
+    , Previous(surface.points.size(), -1)
+    , Next(surface.points.size(), -1)
+  {
+    for (size_t k = 0; k < boundaryLoop.size(); ++k)
+    {
+      const int v = boundaryLoop[k];
+      this->Previous[v] = boundaryLoop[(k + boundaryLoop.size() - 1) % boundaryLoop.size()];
+      this->Next[v] = boundaryLoop[(k + 1) % boundaryLoop.size()];
+    }
+  }
+
+  std::int64_t run(std::vector<Vec2>& uv) const
+  {
+    const size_t n = uv.size();
+    std::vector<char> moved(n, 0), inSet(n, 0);
+    constexpr int MaximumRounds = 60;
+    for (int round = 0; round < MaximumRounds; ++round)
+    {
+      const std::vector<int> flipped = flippedTriangles(this->Surface.triangles, uv);
+      if (flipped.empty())
+      {
+        break;
+      }
+      std::vector<int> set;
+      for (int t : flipped)
+      {
+        for (int v : this->Surface.triangles[t])
+        {
+          if (!inSet[v])
+          {
+            inSet[v] = 1;
+            set.push_back(v);
+          }
+        }
+      }
+      for (int ring = 0; ring < round / 4; ++ring)
+      {
+        const size_t count = set.size();
+        for (size_t r = 0; r < count; ++r)
+        {
+          for (int e = this->Stars.offsets[set[r]]; e < this->Stars.offsets[set[r] + 1]; ++e)
+          {
+            for (int k = 1; k < 3; ++k)
+            {
+              const int w = this->Stars.entries[e][k];
+              if (!inSet[w])
+              {
+                inSet[w] = 1;
+                set.push_back(w);
+              }
+            }
+          }
+        }
+      }
+      for (int v : set)
+      {
+        inSet[v] = 0;
+        const Vec2 before = uv[v];
+        uv[v] = this->Previous[v] >= 0 ? this->bestOnCircle(v, uv) : this->bestInPlane(v, uv);
+        moved[v] |= (uv[v].x != before.x || uv[v].y != before.y);
+      }
+    }
+    return std::count(moved.begin(), moved.end(), 1);
+  }
+
+private:
+  double smallestArea(int v, Vec2 p, const std::vector<Vec2>& uv) const
+  {
+    double smallest = HUGE_VAL;
+    for (int e = this->Stars.offsets[v]; e < this->Stars.offsets[v + 1]; ++e)
+    {
+      const auto& entry = this->Stars.entries[e];
+      smallest = std::min(smallest, signedArea(p, uv[entry[1]], uv[entry[2]]));
+    }
+    return smallest;
+  }
+
+  // max over p of min_k area_k(p), each area_k linear in p: a linear program in (p, t) whose
+  // optimum has three active constraints, found by trying every triple (stars are small).
+  Vec2 bestInPlane(int v, const std::vector<Vec2>& uv) const
+  {
+    struct Plane
+    {
+      double gx, gy, c; // area(p) = gx * p.x + gy * p.y + c
+    };
+    std::vector<Plane> planes;
+    for (int e = this->Stars.offsets[v]; e < this->Stars.offsets[v + 1]; ++e)
+    {
+      const Vec2 b = uv[this->Stars.entries[e][1]], c = uv[this->Stars.entries[e][2]];
+      // area = (cross(b, c) + cross(p, b - c)) / 2
+      planes.push_back({ 0.5 * (b.y - c.y), -0.5 * (b.x - c.x), 0.5 * cross(b, c) });
+    }
+    Vec2 best = uv[v];
+    double bestValue = this->smallestArea(v, best, uv);
+    const size_t m = std::min<size_t>(planes.size(), 16);
+    for (size_t i = 0; i < m; ++i)
+    {
+      for (size_t j = i + 1; j < m; ++j)
+      {
+        for (size_t k = j + 1; k < m; ++k)
+        {
+          // area_i(p) = area_j(p) = area_k(p): two linear equations in p.
+          const Plane& a = planes[i];
+          const Plane& b = planes[j];
+          const Plane& c = planes[k];
+          const double a11 = a.gx - b.gx, a12 = a.gy - b.gy, r1 = b.c - a.c;
+          const double a21 = a.gx - c.gx, a22 = a.gy - c.gy, r2 = c.c - a.c;
+          const double det = a11 * a22 - a12 * a21;
+          if (std::abs(det) <= 1e-300)
+          {
+            continue;
+          }
+          const Vec2 p = { (r1 * a22 - a12 * r2) / det, (a11 * r2 - a21 * r1) / det };
+          const double value = this->smallestArea(v, p, uv);
+          if (value > bestValue)
+          {
+            bestValue = value;
+            best = p;
+          }
+        }
+      }
+    }
+    return best;
+  }
+
+  // Boundary vertices stay on the circle, between their boundary neighbours: the best of a
+  // dense set of angles there, refined once around the winner.
+  Vec2 bestOnCircle(int v, const std::vector<Vec2>& uv) const
+  {
+    const Vec2 a = uv[this->Previous[v]], b = uv[this->Next[v]];
+    double span = std::atan2(cross(a, b), dot(a, b));
+    if (span <= 0.0)
+    {
+      span += 2.0 * 3.14159265358979323846;
+    }
+    const double start = std::atan2(a.y, a.x);
+    Vec2 best = uv[v];
+    double bestValue = this->smallestArea(v, best, uv);
+    double low = 0.0, high = 1.0;
+    for (int level = 0; level < 3; ++level)
+    {
+      constexpr int Steps = 32;
+      double bestFraction = -1.0;
+      for (int s = 1; s < Steps; ++s)
+      {
+        const double fraction = low + (high - low) * s / Steps;
+        const double angle = start + fraction * span;
+        const Vec2 p = { std::cos(angle), std::sin(angle) };
+        const double value = this->smallestArea(v, p, uv);
+        if (value > bestValue)
+        {
+          bestValue = value;
+          best = p;
+          bestFraction = fraction;
+        }
+      }
+      if (bestFraction < 0.0)
+      {
+        break;
+      }
+      const double width = (high - low) / Steps;
+      low = std::max(0.0, bestFraction - width);
+      high = std::min(1.0, bestFraction + width);
+    }
+    return best;
+  }
+
+  const SurfaceMesh& Surface;
+  const VertexStars& Stars;
+  std::vector<int> Previous, Next;
+};
+
+} // namespace composition
+} // namespace otparam
+
+#endif
