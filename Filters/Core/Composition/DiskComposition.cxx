@@ -79,13 +79,13 @@ CompositionResult composeWithInverseTransport(const SurfaceMesh& surface,
   CompositionResult result;
   if (conformalUv.size() != surface.points.size())
   {
-    result.error = "the conformal image has " + std::to_string(conformalUv.size()) +
+    result.status.error = "the conformal image has " + std::to_string(conformalUv.size()) +
       " points but the surface has " + std::to_string(surface.points.size());
     return result;
   }
   if (samples.size() < 3 || samples.size() != sampleImages.size())
   {
-    result.error = "the transport needs at least 3 samples with one image each (got " +
+    result.status.error = "the transport needs at least 3 samples with one image each (got " +
       std::to_string(samples.size()) + " samples and " + std::to_string(sampleImages.size()) +
       " images)";
     return result;
@@ -94,9 +94,9 @@ CompositionResult composeWithInverseTransport(const SurfaceMesh& surface,
   {
     if (options.progress && !options.progress(fraction))
     {
-      result.aborted = true;
+      result.status.aborted = true;
     }
-    return !result.aborted;
+    return !result.status.aborted;
   };
 
   auto start = Clock::now();

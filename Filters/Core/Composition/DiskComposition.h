@@ -24,6 +24,7 @@
 #ifndef OTPARAM_COMPOSITION_DISKCOMPOSITION_H
 #define OTPARAM_COMPOSITION_DISKCOMPOSITION_H
 
+#include "Common/Status.h"
 #include "Mesh/SurfaceMesh.h"
 
 #include <cstdint>
@@ -48,8 +49,7 @@ struct CompositionOptions
 
 struct CompositionResult
 {
-  std::string error; // empty on success
-  bool aborted = false;
+  Status status;                              // error (empty on success) or aborted
   std::vector<Vec2> uv;                       // final disk coordinates per mesh point
   std::vector<Vec2> interpolatedUv;           // after step 1 only
   std::int64_t outsideSampleHull = 0;         // mesh points mapped through a circular segment

@@ -555,15 +555,15 @@ ConformalDiskMapResult computeWithLaplacian(const SurfaceMesh& mesh,
   {
     msg << "the tolerance must be positive and the iteration count non-negative";
   }
-  result.error = msg.str();
-  if (!result.error.empty())
+  result.status.error = msg.str();
+  if (!result.status.error.empty())
   {
     return result;
   }
   auto keepGoing = [&](double fraction)
   {
-    result.aborted = options.progress && !options.progress(fraction);
-    return !result.aborted;
+    result.status.aborted = options.progress && !options.progress(fraction);
+    return !result.status.aborted;
   };
 
   result.alignVertex = options.alignVertex >= 0
@@ -571,7 +571,7 @@ ConformalDiskMapResult computeWithLaplacian(const SurfaceMesh& mesh,
     : *std::min_element(boundaryLoop.begin(), boundaryLoop.end());
   if (static_cast<size_t>(nv) == boundaryLoop.size())
   {
-    result.error = "the surface has no interior vertex to send to the disk's centre";
+    result.status.error = "the surface has no interior vertex to send to the disk's centre";
     return result;
   }
 
@@ -582,7 +582,7 @@ ConformalDiskMapResult computeWithLaplacian(const SurfaceMesh& mesh,
   result.intrinsicFlips = disk.IntrinsicFlips;
   if (!disk.factor())
   {
-    result.error = "the cotangent Laplacian could not be factored (degenerate triangles?)";
+    result.status.error = "the cotangent Laplacian could not be factored (degenerate triangles?)";
     return result;
   }
   result.secondsFactorization = secondsSince(t0);
@@ -736,7 +736,7 @@ ConformalDiskMapResult computeConformalDiskMap(const SurfaceMesh& mesh,
   const std::vector<int>& boundaryLoop, const ConformalDiskMapOptions& options)
 {
   ConformalDiskMapResult result = computeWithLaplacian(mesh, boundaryLoop, options, false);
-  if (!result.error.empty() || result.aborted)
+  if (!result.status.error.empty() || result.status.aborted)
   {
     return result;
   }
@@ -752,8 +752,8 @@ ConformalDiskMapResult computeConformalDiskMap(const SurfaceMesh& mesh,
     again.progress = [&options](double) { return options.progress(1.0); };
   }
   ConformalDiskMapResult intrinsic = computeWithLaplacian(mesh, boundaryLoop, again, true);
-  if (intrinsic.aborted ||
-    (intrinsic.error.empty() &&
+  if (intrinsic.status.aborted ||
+    (intrinsic.status.error.empty() &&
       foldedTriangles(mesh, intrinsic.uv) < result.foldedWithMeshLaplacian))
   {
     intrinsic.intrinsicLaplacian = true;

@@ -3,6 +3,7 @@
 #ifndef OTPARAM_CONFORMAL_CONFORMALDISKMAP_H
 #define OTPARAM_CONFORMAL_CONFORMALDISKMAP_H
 
+#include "Common/Status.h"
 #include "Mesh/SurfaceMesh.h"
 
 #include <functional>
@@ -25,8 +26,7 @@ struct ConformalDiskMapOptions
 
 struct ConformalDiskMapResult
 {
-  std::string error; // empty on success
-  bool aborted = false;
+  Status status;        // error (empty on success) or aborted
   std::vector<Vec2> uv; // per mesh point; boundary points on the unit circle
   int centerVertex = -1;
   int alignVertex = -1;

@@ -99,14 +99,14 @@ void compose(const AreaPreservingOptions& options, AreaPreservingResult& run)
   {
     run.composition = composeWithInverseTransport(conformal.surface.mesh, conformal.map.uv,
       conformal.boundaryLoop, run.diracs, run.sampleImages, compositionOptions);
-    if (run.composition.aborted)
+    if (run.composition.status.aborted)
     {
       run.status.aborted = true;
       return;
     }
-    if (!run.composition.error.empty())
+    if (!run.composition.status.error.empty())
     {
-      run.status.error = "composition: " + run.composition.error + ".";
+      run.status.error = "composition: " + run.composition.status.error + ".";
       return;
     }
     run.figures = measureDistortion(conformal.surface.mesh, run.composition.uv);

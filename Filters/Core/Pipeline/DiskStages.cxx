@@ -135,14 +135,14 @@ ConformalStage runConformalStage(const TriangleSoup& soup, const ConformalStageO
   try
   {
     stage.map = computeConformalDiskMap(mesh, stage.boundaryLoop, mapOptions);
-    if (stage.map.aborted)
+    if (stage.map.status.aborted)
     {
       status.aborted = true;
       return stage;
     }
-    if (!stage.map.error.empty())
+    if (!stage.map.status.error.empty())
     {
-      status.error = "The conformal map failed: " + stage.map.error + ".";
+      status.error = "The conformal map failed: " + stage.map.status.error + ".";
       return stage;
     }
     stage.figures = measureDistortion(mesh, stage.map.uv);
@@ -300,14 +300,14 @@ SamplingStage runSamplingStage(const std::vector<Vec2>& points,
     status.error = std::string("The sampling failed: ") + e.what();
     return stage;
   }
-  if (result.aborted)
+  if (result.status.aborted)
   {
     status.aborted = true;
     return stage;
   }
-  if (!result.error.empty())
+  if (!result.status.error.empty())
   {
-    status.error = "The sampling failed: " + result.error;
+    status.error = "The sampling failed: " + result.status.error;
     return stage;
   }
   if (result.samples.empty() || result.mass.size() != result.samples.size())
@@ -330,11 +330,8 @@ SamplingStage runSamplingStage(const std::vector<Vec2>& points,
     status.warnings.push_back(msg.str());
     msg.str("");
   }
-  if (!result.warning.empty())
-  {
-    msg << "NumberOfSamples = " << options.numberOfSamples << " not met: " << result.warning << ".";
-    status.warnings.push_back(msg.str());
-  }
+  status.warnings.insert(
+    status.warnings.end(), result.status.warnings.begin(), result.status.warnings.end());
   return stage;
 }
 

@@ -1023,7 +1023,7 @@ void sampleSupport(
     done = std::min(0.9, done + 0.9 * share);
     if (!finished)
     {
-      result.aborted = true;
+      result.status.aborted = true;
       return;
     }
     refinedLoops = boundaryLoopsOf(*cdt);
@@ -1102,7 +1102,7 @@ void sampleSupport(
   const auto source = field.makeSource(error);
   if (!source)
   {
-    result.error = error;
+    result.status.error = error;
     return;
   }
   // Lloyd steps on every sample, the boundary ones held fixed.
@@ -1117,12 +1117,12 @@ void sampleSupport(
   fixed.insert(fixed.end(), interior.size(), 0);
   if (!relax(field, options, all, fixed, error))
   {
-    result.error = error;
+    result.status.error = error;
     return;
   }
   if (options.progress && !options.progress(0.9))
   {
-    result.aborted = true;
+    result.status.aborted = true;
     return;
   }
   const std::vector<Vec2> relaxed(
@@ -1140,12 +1140,12 @@ SamplerResult sampleDensity(const DensityField& field, const SamplerOptions& opt
   SamplerResult result;
   if (options.numberOfSamples < 3 || options.maximumNumberOfSamples < options.numberOfSamples)
   {
-    result.error = "the number of samples must be at least 3 and at most the maximum";
+    result.status.error = "the number of samples must be at least 3 and at most the maximum";
     return result;
   }
   if (!(options.minimumAngleDegrees > 0.0 && options.minimumAngleDegrees <= 35.0))
   {
-    result.error = "the minimum angle must be in (0, 35] degrees";
+    result.status.error = "the minimum angle must be in (0, 35] degrees";
     return result;
   }
   result.sourceMass = field.isUnitDisk() ? Pi : field.area();
@@ -1195,7 +1195,7 @@ SamplerResult sampleDensity(const DensityField& field, const SamplerOptions& opt
     if (!field.isConvex())
     {
       sampleSupport(field, options, integral, result);
-      if (result.aborted || !result.error.empty())
+      if (result.status.aborted || !result.status.error.empty())
       {
         return result;
       }
@@ -1221,7 +1221,7 @@ SamplerResult sampleDensity(const DensityField& field, const SamplerOptions& opt
         done = std::min(0.9, done + 0.9 * share);
         if (!finished)
         {
-          result.aborted = true;
+          result.status.aborted = true;
           return result;
         }
         drop = boundaryToDrop(refinement->triangulation(), field);
@@ -1259,7 +1259,7 @@ SamplerResult sampleDensity(const DensityField& field, const SamplerOptions& opt
       const auto source = field.makeSource(error);
       if (!source)
       {
-        result.error = error;
+        result.status.error = error;
         return result;
       }
       // Lloyd steps even out the masses of well-resolved densities, but on a density that varies
@@ -1271,12 +1271,12 @@ SamplerResult sampleDensity(const DensityField& field, const SamplerOptions& opt
       std::vector<Vec2> relaxed = refined;
       if (!relax(field, options, relaxed, onBoundary, error))
       {
-        result.error = error;
+        result.status.error = error;
         return result;
       }
       if (options.progress && !options.progress(0.9))
       {
-        result.aborted = true;
+        result.status.aborted = true;
         return result;
       }
       adoptCandidate(result, finishCandidate(field, options, *source, relaxed, result.sourceMass),
@@ -1288,11 +1288,11 @@ SamplerResult sampleDensity(const DensityField& field, const SamplerOptions& opt
     if (!result.capped && std::abs(reached / target - 1.0) > 0.1)
     {
       std::ostringstream text;
-      text << "reached " << result.samples.size() << " samples for a target of "
-           << options.numberOfSamples
+      text << "NumberOfSamples = " << options.numberOfSamples << " not met: reached "
+           << result.samples.size() << " samples for a target of " << options.numberOfSamples
            << ": the density varies too fast for so few samples at this minimum angle (the "
-              "graded refinement needs that many)";
-      result.warning = text.str();
+              "graded refinement needs that many).";
+      result.status.warnings.push_back(text.str());
     }
   }
   if (options.mode == SamplingMode::MeshVertices)
@@ -1303,7 +1303,7 @@ SamplerResult sampleDensity(const DensityField& field, const SamplerOptions& opt
     const auto source = field.makeSource(error);
     if (!source)
     {
-      result.error = error;
+      result.status.error = error;
       return result;
     }
     const Candidate c = massesOf(*source, result.samples, result.sourceMass);

@@ -4,6 +4,7 @@
 #define OTPARAM_SAMPLING_SAMPLER_H
 
 #include "Common/Geometry.h"
+#include "Common/Status.h"
 
 #include <functional>
 #include <string>
@@ -38,9 +39,9 @@ struct SamplerOptions
 
 struct SamplerResult
 {
-  std::string error;   // empty on success
-  std::string warning; // e.g. the sample count could not come within 10% of the target
-  bool aborted = false;
+  // error (empty on success), warnings (e.g. the sample count could not come within 10% of
+  // the target), or aborted.
+  Status status;
   bool capped = false; // the refinement stopped at maximumNumberOfSamples
   std::vector<Vec2> samples;
   std::vector<Triangle> triangles;  // Delaunay triangulation of the samples (mesh triangles in

@@ -44,7 +44,7 @@ TEST(AreaPreservingComposition, IdentityTransportKeepsTheConformalImage)
   options.correctAreas = false;
   const CompositionResult result = composeWithInverseTransport(
     surface, mesh.points, loop, samples.points, samples.points, options);
-  ASSERT_EQ(result.error, "");
+  ASSERT_EQ(result.status.error, "");
   EXPECT_GT(result.outsideSampleHull, 0);
   EXPECT_EQ(result.flippedAfterInterpolation, 0);
   for (size_t v = 0; v < mesh.points.size(); ++v)
@@ -69,7 +69,7 @@ TEST(AreaPreservingComposition, LinearImagesAreInterpolatedExactly)
   const SurfaceMesh surface = flatSurface(mesh);
   const CompositionResult result =
     composeWithInverseTransport(surface, mesh.points, boundaryOf(surface), samples.points, images);
-  ASSERT_EQ(result.error, "");
+  ASSERT_EQ(result.status.error, "");
   for (size_t v = 0; v < mesh.points.size(); ++v)
   {
     const Vec2 p = mesh.points[v];
@@ -100,7 +100,7 @@ TEST(AreaPreservingComposition, UntanglesFlipsAndCorrectsAreas)
   const std::vector<int> loop = boundaryOf(surface);
   const CompositionResult result =
     composeWithInverseTransport(surface, mesh.points, loop, samples.points, images);
-  ASSERT_EQ(result.error, "");
+  ASSERT_EQ(result.status.error, "");
   EXPECT_GT(result.flippedAfterInterpolation, 0);
   EXPECT_GT(result.untangledVertices, 0);
   EXPECT_EQ(result.flippedTriangles, 0);
@@ -123,17 +123,17 @@ TEST(AreaPreservingComposition, RejectsMismatchedInputsAndHonoursAbort)
   const std::vector<int> loop = boundaryOf(surface);
   std::vector<Vec2> shorter(mesh.points.begin(), mesh.points.end() - 1);
   EXPECT_NE(
-    composeWithInverseTransport(surface, shorter, loop, mesh.points, mesh.points).error, "");
+    composeWithInverseTransport(surface, shorter, loop, mesh.points, mesh.points).status.error, "");
   EXPECT_NE(
-    composeWithInverseTransport(surface, mesh.points, loop, mesh.points, shorter).error, "");
+    composeWithInverseTransport(surface, mesh.points, loop, mesh.points, shorter).status.error, "");
   const std::vector<Vec2> two(mesh.points.begin(), mesh.points.begin() + 2);
-  EXPECT_NE(composeWithInverseTransport(surface, mesh.points, loop, two, two).error, "");
+  EXPECT_NE(composeWithInverseTransport(surface, mesh.points, loop, two, two).status.error, "");
 
   CompositionOptions options;
   options.progress = [](double) { return false; };
   const CompositionResult aborted =
     composeWithInverseTransport(surface, mesh.points, loop, mesh.points, mesh.points, options);
-  EXPECT_TRUE(aborted.aborted);
+  EXPECT_TRUE(aborted.status.aborted);
 }
 
 TEST(AreaPreservingComposition, BoundaryArcMidpoint)

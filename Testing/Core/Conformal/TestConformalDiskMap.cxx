@@ -1,10 +1,10 @@
 // The conformal disk map against the exact map of a hemisphere, against CGAL's discrete
 // conformal map on the shared meshes, and the disk-topology checks.
 #include "Conformal/ConformalDiskMap.h"
-#include "MeshFiles.h"
 #include "Mesh/DistortionMetrics.h"
-#include "RingDisk.h"
 #include "Mesh/SurfaceMesh.h"
+#include "MeshFiles.h"
+#include "RingDisk.h"
 
 #include <gtest/gtest.h>
 
@@ -67,7 +67,7 @@ Mapped mapMesh(const SurfaceMesh& mesh, ConformalDiskMapOptions options = {})
   const std::string error = checkDiskTopology(mesh, m.loop);
   EXPECT_EQ(error, "");
   m.map = computeConformalDiskMap(mesh, m.loop, options);
-  EXPECT_EQ(m.map.error, "");
+  EXPECT_EQ(m.map.status.error, "");
   m.figures = measureDistortion(mesh, m.map.uv);
   return m;
 }
@@ -243,14 +243,14 @@ TEST(ConformalDiskMap, RejectsBadCentreAndAlignVertices)
   ASSERT_EQ(checkDiskTopology(mesh, loop), "");
   ConformalDiskMapOptions options;
   options.centerVertex = loop[0];
-  EXPECT_NE(
-    computeConformalDiskMap(mesh, loop, options).error.find("on the boundary"), std::string::npos);
+  EXPECT_NE(computeConformalDiskMap(mesh, loop, options).status.error.find("on the boundary"),
+    std::string::npos);
   options.centerVertex = 1000000;
-  EXPECT_NE(
-    computeConformalDiskMap(mesh, loop, options).error.find("not a point id"), std::string::npos);
+  EXPECT_NE(computeConformalDiskMap(mesh, loop, options).status.error.find("not a point id"),
+    std::string::npos);
   options = {};
   options.alignVertex = 0;
-  EXPECT_NE(computeConformalDiskMap(mesh, loop, options).error.find("not on the boundary"),
+  EXPECT_NE(computeConformalDiskMap(mesh, loop, options).status.error.find("not on the boundary"),
     std::string::npos);
 }
 
@@ -262,7 +262,7 @@ TEST(ConformalDiskMap, AbortStopsEarly)
   ConformalDiskMapOptions options;
   options.progress = [](double) { return false; };
   const auto r = computeConformalDiskMap(mesh, loop, options);
-  EXPECT_TRUE(r.aborted);
+  EXPECT_TRUE(r.status.aborted);
   EXPECT_TRUE(r.uv.empty());
 }
 

@@ -1,12 +1,12 @@
 // The adaptive density sampler: equal masses where the density is constant or varies by 1e6,
 // angles, counts, exact boundary samples, and the paper's claim that the OT solver converges
 // from adaptive samples.
-#include "Sampling/PlanarSampler.h"
 #include "Conformal/ConformalDiskMap.h"
-#include "Sampling/PlanarDensityField.h"
-#include "MeshFiles.h"
 #include "Mesh/DistortionMetrics.h"
+#include "MeshFiles.h"
 #include "RingDisk.h"
+#include "Sampling/PlanarDensityField.h"
+#include "Sampling/PlanarSampler.h"
 #include "Transport/SemiDiscreteOT.h"
 
 #include <gtest/gtest.h>
@@ -53,7 +53,7 @@ SamplerResult adaptiveSamples(const DensityField& field, long long count)
   SamplerOptions options;
   options.numberOfSamples = count;
   SamplerResult r = sampleDensity(field, options);
-  EXPECT_EQ(r.error, "");
+  EXPECT_EQ(r.status.error, "");
   return r;
 }
 } // namespace
@@ -176,10 +176,10 @@ TEST(AdaptiveSampler, RejectsWhatItCannotSample)
   const auto field = fieldOf(disk, [](Vec2) { return 1.0; });
   SamplerOptions options;
   options.numberOfSamples = 2;
-  EXPECT_NE(sampleDensity(*field, options).error, "");
+  EXPECT_NE(sampleDensity(*field, options).status.error, "");
   options.numberOfSamples = 100;
   options.minimumAngleDegrees = 40.0;
-  EXPECT_NE(sampleDensity(*field, options).error, "");
+  EXPECT_NE(sampleDensity(*field, options).status.error, "");
 }
 
 TEST(AdaptiveSampler, CapStopsTheRefinement)
@@ -208,7 +208,7 @@ TEST_P(ConformalImages, AdaptiveSamplesMakeTheTransportSolvable)
   std::vector<int> loop;
   ASSERT_EQ(checkDiskTopology(surface, loop), "");
   const ConformalDiskMapResult map = computeConformalDiskMap(surface, loop);
-  ASSERT_EQ(map.error, "");
+  ASSERT_EQ(map.status.error, "");
   std::vector<double> perTriangle, perPoint;
   computeAreaDensity(surface, map.uv, perTriangle, perPoint);
   std::string error;
@@ -222,8 +222,8 @@ TEST_P(ConformalImages, AdaptiveSamplesMakeTheTransportSolvable)
   const SamplerResult adaptive = sampleDensity(*field, options);
   options.mode = SamplingMode::Uniform;
   const SamplerResult uniform = sampleDensity(*field, options);
-  ASSERT_EQ(adaptive.error, "");
-  ASSERT_EQ(uniform.error, "");
+  ASSERT_EQ(adaptive.status.error, "");
+  ASSERT_EQ(uniform.status.error, "");
   auto source = makeUnitDiskSource();
   const OTResult fromAdaptive = solveSemiDiscreteOT(*source, adaptive.samples, adaptive.mass);
   OTOptions limited;
@@ -389,7 +389,7 @@ TEST_P(Supports, SamplesOnlyTheSupport)
     SamplerOptions options;
     options.numberOfSamples = target;
     const SamplerResult r = sampleDensity(*field, options);
-    ASSERT_EQ(r.error, "") << c.name;
+    ASSERT_EQ(r.status.error, "") << c.name;
     EXPECT_NEAR(static_cast<double>(r.samples.size()), static_cast<double>(target), 0.1 * target)
       << c.name;
     EXPECT_NEAR(r.sourceMass, area, 1e-9 * area) << c.name;

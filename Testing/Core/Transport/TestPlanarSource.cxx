@@ -1,6 +1,6 @@
 // Exact integration of the source measures over convex cells.
-#include "Transport/SemiDiscreteOT.h"
 #include "Transport/PlanarSource.h"
+#include "Transport/SemiDiscreteOT.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // The damped Newton solver against closed forms and known transport maps.
-#include "Transport/MultiscaleStart.h"
 #include "OTTestProblems.h"
+#include "Transport/MultiscaleStart.h"
 #include "Transport/PlanarPowerDiagram.h"
 #include "Transport/SemiDiscreteOT.h"
 
