@@ -63,13 +63,6 @@ public:
   vtkTypeMacro(vtkAdaptiveDensitySampler, vtkOTParamAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
-  enum SamplingModes
-  {
-    ADAPTIVE = 0,
-    UNIFORM = 1,
-    MESH_VERTICES = 2
-  };
-
   enum SizeRules
   {
     SQRT_DENSITY = 0,

@@ -58,13 +58,6 @@ public:
   vtkTypeMacro(vtkAreaPreservingParam, vtkOTParamAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
-  enum SamplingModes
-  {
-    ADAPTIVE = 0,
-    UNIFORM = 1,
-    MESH_VERTICES = 2
-  };
-
   ///@{
   /**
    * Approximate number of Dirac samples of the conformal factor (vtkAdaptiveDensitySampler's

@@ -30,6 +30,17 @@ public:
   vtkTypeMacro(vtkOTParamAlgorithm, vtkPolyDataAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
+  /**
+   * The SamplingMode values of the filters that sample (vtkAdaptiveDensitySampler,
+   * vtkAreaPreservingParam), as the core's otparam::SamplingMode.
+   */
+  enum SamplingModes
+  {
+    ADAPTIVE = 0,
+    UNIFORM = 1,
+    MESH_VERTICES = 2
+  };
+
 protected:
   vtkOTParamAlgorithm();
   ~vtkOTParamAlgorithm() override;
