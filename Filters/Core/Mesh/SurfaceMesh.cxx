@@ -122,21 +122,67 @@ std::string compactMesh(const std::vector<Vec3>& points,
   return {};
 }
 
-std::string checkDiskTopology(const SurfaceMesh& mesh, std::vector<int>& boundaryLoop,
-  const std::vector<std::int64_t>* reportedIds)
+namespace
 {
-  boundaryLoop.clear();
-  auto id = [reportedIds](int v) -> std::int64_t { return reportedIds ? (*reportedIds)[v] : v; };
-  const auto& tris = mesh.triangles;
-  const size_t nv = mesh.points.size();
-  std::ostringstream msg;
-  if (tris.empty())
+// Directed edge -> triangle, as a sorted array (several times faster than a hash map here); an
+// undirected edge may carry each direction once.
+class DirectedEdges
+{
+public:
+  explicit DirectedEdges(const std::vector<Triangle>& triangles)
   {
-    return "the surface has no triangles";
+    this->Edges.reserve(3 * triangles.size());
+    for (size_t t = 0; t < triangles.size(); ++t)
+    {
+      for (int k = 0; k < 3; ++k)
+      {
+        this->Edges.emplace_back(
+          edgeKey(triangles[t][k], triangles[t][(k + 1) % 3]), static_cast<int>(t));
+      }
+    }
+    std::sort(this->Edges.begin(), this->Edges.end());
   }
 
+  // A direction used twice (three or more triangles on one edge show up so too), or "".
+  template <typename Id>
+  std::string checkEachDirectionOnce(Id id) const
+  {
+    for (size_t e = 1; e < this->Edges.size(); ++e)
+    {
+      if (this->Edges[e].first == this->Edges[e - 1].first)
+      {
+        const int a = static_cast<int>(this->Edges[e].first >> 32);
+        const int b = static_cast<int>(this->Edges[e].first & 0xffffffffu);
+        std::ostringstream msg;
+        msg << "triangles " << this->Edges[e - 1].second << " and " << this->Edges[e].second
+            << " both use the edge (" << id(a) << ", " << id(b)
+            << ") in the same direction: the surface is non-manifold there or not "
+               "consistently oriented";
+        return msg.str();
+      }
+    }
+    return {};
+  }
+
+  // The triangle holding the directed edge (a, b), or -1.
+  int triangleOf(int a, int b) const
+  {
+    const std::uint64_t key = edgeKey(a, b);
+    auto it = std::lower_bound(
+      this->Edges.begin(), this->Edges.end(), std::make_pair(key, std::numeric_limits<int>::min()));
+    return it != this->Edges.end() && it->first == key ? it->second : -1;
+  }
+
+private:
+  std::vector<std::pair<std::uint64_t, int>> Edges;
+};
+
+template <typename Id>
+std::string checkCoordinatesAndAreas(const SurfaceMesh& mesh, Id id)
+{
+  std::ostringstream msg;
   std::vector<std::int64_t> bad;
-  for (size_t v = 0; v < nv; ++v)
+  for (size_t v = 0; v < mesh.points.size(); ++v)
   {
     const Vec3 p = mesh.points[v];
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
@@ -149,13 +195,12 @@ std::string checkDiskTopology(const SurfaceMesh& mesh, std::vector<int>& boundar
     msg << bad.size() << " point(s) have NaN or infinite coordinates: point ids " << idList(bad);
     return msg.str();
   }
-
   // Degenerate = area negligible against the square of the longest edge (a cap or needle
   // whose angles, and so the cotangent weights, are meaningless), or all points coincident.
-  for (size_t t = 0; t < tris.size(); ++t)
+  for (size_t t = 0; t < mesh.triangles.size(); ++t)
   {
-    const Vec3 a = mesh.points[tris[t][0]], b = mesh.points[tris[t][1]],
-               c = mesh.points[tris[t][2]];
+    const Triangle& tri = mesh.triangles[t];
+    const Vec3 a = mesh.points[tri[0]], b = mesh.points[tri[1]], c = mesh.points[tri[2]];
     const double longest = std::max({ norm(b - a), norm(c - b), norm(a - c) });
     const double twiceArea = norm(cross(b - a, c - a));
     if (!(twiceArea > 1e-12 * longest * longest))
@@ -166,58 +211,22 @@ std::string checkDiskTopology(const SurfaceMesh& mesh, std::vector<int>& boundar
   if (!bad.empty())
   {
     msg << bad.size() << " triangle(s) have zero area (degenerate): triangle ids " << idList(bad);
-    return msg.str();
   }
+  return msg.str();
+}
 
-  // Directed edge -> triangle, as a sorted array (several times faster than a hash map here);
-  // an undirected edge may carry each direction once.
-  std::vector<std::pair<std::uint64_t, int>> directedEdges;
-  directedEdges.reserve(3 * tris.size());
-  for (size_t t = 0; t < tris.size(); ++t)
-  {
-    for (int k = 0; k < 3; ++k)
-    {
-      directedEdges.emplace_back(edgeKey(tris[t][k], tris[t][(k + 1) % 3]), static_cast<int>(t));
-    }
-  }
-  std::sort(directedEdges.begin(), directedEdges.end());
-  for (size_t e = 1; e < directedEdges.size(); ++e)
-  {
-    if (directedEdges[e].first == directedEdges[e - 1].first)
-    {
-      const int a = static_cast<int>(directedEdges[e].first >> 32);
-      const int b = static_cast<int>(directedEdges[e].first & 0xffffffffu);
-      msg << "triangles " << directedEdges[e - 1].second << " and " << directedEdges[e].second
-          << " both use the edge (" << id(a) << ", " << id(b)
-          << ") in the same direction: the surface is non-manifold there or not "
-             "consistently oriented";
-      return msg.str();
-    }
-  }
-  // The triangle holding the directed edge (a, b), or -1.
-  auto triangleOf = [&directedEdges](int a, int b)
-  {
-    const std::uint64_t key = edgeKey(a, b);
-    auto it = std::lower_bound(directedEdges.begin(), directedEdges.end(),
-      std::make_pair(key, std::numeric_limits<int>::min()));
-    return it != directedEdges.end() && it->first == key ? it->second : -1;
-  };
-  // Three or more triangles on one edge show up as a repeated direction above.
-
-  // Vertex manifoldness: the triangles around a vertex must form one fan.
-  std::vector<int> degree(nv, 0);
-  for (const auto& t : tris)
-  {
-    for (int v : t)
-    {
-      ++degree[v];
-    }
-  }
-  std::vector<int> fanStart(nv, -1);
+// The triangles around every vertex must form one fan; "" or the first vertex that fails.
+template <typename Id>
+std::string checkManifoldVertices(const SurfaceMesh& mesh, const DirectedEdges& edges, Id id)
+{
+  const auto& tris = mesh.triangles;
+  const size_t nv = mesh.points.size();
+  std::vector<int> degree(nv, 0), fanStart(nv, -1);
   for (size_t t = 0; t < tris.size(); ++t)
   {
     for (int v : tris[t])
     {
+      ++degree[v];
       fanStart[v] = static_cast<int>(t);
     }
   }
@@ -226,6 +235,7 @@ std::string checkDiskTopology(const SurfaceMesh& mesh, std::vector<int>& boundar
     const auto& tri = tris[t];
     return tri[0] == v ? 0 : tri[1] == v ? 1 : 2;
   };
+  std::ostringstream msg;
   for (size_t v = 0; v < nv; ++v)
   {
     const int vi = static_cast<int>(v);
@@ -241,33 +251,24 @@ std::string checkDiskTopology(const SurfaceMesh& mesh, std::vector<int>& boundar
     bool closed = false;
     while (true)
     {
-      const int next = tris[t][(corner(t, vi) + 1) % 3];
-      t = triangleOf(next, vi);
-      if (t < 0)
+      t = edges.triangleOf(tris[t][(corner(t, vi) + 1) % 3], vi);
+      if (t < 0 || t == start)
       {
-        break;
-      }
-      if (t == start)
-      {
-        closed = true;
+        closed = t == start;
         break;
       }
       ++visited;
     }
-    if (!closed)
+    // An open fan: the other way from the start too.
+    for (t = start; !closed;)
     {
-      t = start;
-      while (true)
+      const int neighbour = edges.triangleOf(vi, tris[t][(corner(t, vi) + 2) % 3]);
+      if (neighbour < 0)
       {
-        const int prev = tris[t][(corner(t, vi) + 2) % 3];
-        const int neighbour = triangleOf(vi, prev);
-        if (neighbour < 0)
-        {
-          break;
-        }
-        t = neighbour;
-        ++visited;
+        break;
       }
+      t = neighbour;
+      ++visited;
     }
     if (visited != degree[v])
     {
@@ -276,31 +277,35 @@ std::string checkDiskTopology(const SurfaceMesh& mesh, std::vector<int>& boundar
       return msg.str();
     }
   }
+  return {};
+}
 
-  UnionFind components(nv);
-  size_t count = nv;
-  for (const auto& t : tris)
+size_t countComponents(const SurfaceMesh& mesh)
+{
+  UnionFind components(mesh.points.size());
+  size_t count = mesh.points.size();
+  for (const auto& t : mesh.triangles)
   {
     count -= components.unite(t[0], t[1]);
     count -= components.unite(t[1], t[2]);
   }
-  if (count != 1)
-  {
-    msg << "the surface has " << count
-        << " connected components; a disk-like surface needs exactly 1";
-    return msg.str();
-  }
+  return count;
+}
 
-  // Boundary: directed edges whose reverse is absent; with manifold vertices each boundary
-  // vertex has exactly one outgoing boundary edge.
+// Boundary loops in the triangles' orientation: directed edges whose reverse is absent; with
+// manifold vertices each boundary vertex has exactly one outgoing boundary edge.
+std::vector<std::vector<int>> boundaryLoops(
+  const SurfaceMesh& mesh, const DirectedEdges& edges, size_t& boundaryEdges)
+{
+  const size_t nv = mesh.points.size();
   std::vector<int> nextOnBoundary(nv, -1);
-  size_t boundaryEdges = 0;
-  for (const auto& t : tris)
+  boundaryEdges = 0;
+  for (const auto& t : mesh.triangles)
   {
     for (int k = 0; k < 3; ++k)
     {
       const int a = t[k], b = t[(k + 1) % 3];
-      if (triangleOf(b, a) < 0)
+      if (edges.triangleOf(b, a) < 0)
       {
         nextOnBoundary[a] = b;
         ++boundaryEdges;
@@ -323,29 +328,80 @@ std::string checkDiskTopology(const SurfaceMesh& mesh, std::vector<int>& boundar
     }
     loops.push_back(std::move(loop));
   }
-  const size_t edges = (3 * tris.size() + boundaryEdges) / 2;
-  const long long euler = static_cast<long long>(nv) - static_cast<long long>(edges) +
-    static_cast<long long>(tris.size());
-  if (loops.empty())
+  return loops;
+}
+} // namespace
+
+std::string analyzeSurface(
+  const SurfaceMesh& mesh, SurfaceTopology& topology, const std::vector<std::int64_t>* reportedIds)
+{
+  topology = SurfaceTopology();
+  auto id = [reportedIds](int v) -> std::int64_t { return reportedIds ? (*reportedIds)[v] : v; };
+  if (mesh.triangles.empty())
+  {
+    return "the surface has no triangles";
+  }
+  std::string error = checkCoordinatesAndAreas(mesh, id);
+  if (!error.empty())
+  {
+    return error;
+  }
+  const DirectedEdges edges(mesh.triangles);
+  error = edges.checkEachDirectionOnce(id);
+  if (error.empty())
+  {
+    error = checkManifoldVertices(mesh, edges, id);
+  }
+  if (!error.empty())
+  {
+    return error;
+  }
+  topology.components = countComponents(mesh);
+  size_t boundaryEdges = 0;
+  topology.boundaryLoops = boundaryLoops(mesh, edges, boundaryEdges);
+  const size_t numberOfEdges = (3 * mesh.triangles.size() + boundaryEdges) / 2;
+  topology.eulerCharacteristic = static_cast<long long>(mesh.points.size()) -
+    static_cast<long long>(numberOfEdges) + static_cast<long long>(mesh.triangles.size());
+  return {};
+}
+
+std::string checkDiskTopology(const SurfaceMesh& mesh, std::vector<int>& boundaryLoop,
+  const std::vector<std::int64_t>* reportedIds)
+{
+  boundaryLoop.clear();
+  SurfaceTopology topology;
+  const std::string error = analyzeSurface(mesh, topology, reportedIds);
+  if (!error.empty())
+  {
+    return error;
+  }
+  std::ostringstream msg;
+  const long long euler = topology.eulerCharacteristic;
+  const size_t loops = topology.boundaryLoops.size();
+  if (topology.components != 1)
+  {
+    msg << "the surface has " << topology.components
+        << " connected components; a disk-like surface needs exactly 1";
+  }
+  else if (loops == 0)
   {
     msg << "the surface is closed (no boundary loop, Euler characteristic " << euler
         << "); a disk-like surface needs exactly 1 boundary loop";
-    return msg.str();
   }
-  if (loops.size() > 1)
+  else if (loops > 1)
   {
-    msg << "the surface has " << loops.size()
-        << " boundary loops; a disk-like surface needs exactly 1";
-    return msg.str();
+    msg << "the surface has " << loops << " boundary loops; a disk-like surface needs exactly 1";
   }
-  if (euler != 1)
+  else if (euler != 1)
   {
     msg << "the surface has genus " << (1 - euler) / 2 << " (Euler characteristic " << euler
         << "); a disk-like surface has genus 0 (Euler characteristic 1)";
-    return msg.str();
   }
-  boundaryLoop = std::move(loops.front());
-  return {};
+  else
+  {
+    boundaryLoop = std::move(topology.boundaryLoops.front());
+  }
+  return msg.str();
 }
 
 } // namespace otparam

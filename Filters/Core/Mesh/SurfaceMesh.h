@@ -37,6 +37,22 @@ struct CompactedMesh
 std::string compactMesh(const std::vector<Vec3>& points,
   const std::vector<std::array<std::int64_t, 3>>& triangles, CompactedMesh& result);
 
+// What a manifold, consistently oriented triangle surface is made of.
+struct SurfaceTopology
+{
+  size_t components = 0;
+  std::vector<std::vector<int>> boundaryLoops; // each in the triangles' orientation
+  long long eulerCharacteristic = 0;
+};
+
+// Checks what every surface the pipelines take must be (finite coordinates, no degenerate
+// triangles, manifold and consistently oriented, no unreferenced point) and, when it is,
+// reports its components, boundary loops and Euler characteristic; "" or the message (ids
+// mapped through `reportedIds` when given). The disk, the sphere and the surface with holes
+// each judge the topology in their own check.
+std::string analyzeSurface(const SurfaceMesh& mesh, SurfaceTopology& topology,
+  const std::vector<std::int64_t>* reportedIds = nullptr);
+
 // A disk: finite coordinates, no degenerate triangles, manifold and consistently oriented,
 // connected, exactly one boundary loop, Euler characteristic 1. Returns "" when it is one
 // (and its boundary loop, in the direction of the triangles' orientation), else a message that
