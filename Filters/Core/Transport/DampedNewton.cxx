@@ -201,129 +201,169 @@ constexpr double DampedResidual = 1e-6;
 constexpr double QuadraticShare = 1e-2;
 constexpr double ToleranceShare = 0.1;
 
-} // namespace
-
-void dampedNewton(NewtonProblem& problem, const std::vector<double>& nu, std::vector<Height>& h,
-  const NewtonOptions& options, NewtonReport& result)
+// The iteration's state: the problem, the targets and the last accepted step.
+class NewtonIteration
 {
-  const int n = static_cast<int>(nu.size());
-  const double tolerance = options.tolerance;
-  const int maximumNumberOfIterations = options.maximumNumberOfIterations;
-  const std::function<bool(int, double)>& progress = options.progress;
-  // KMT: every accepted step keeps each cell's mass above eps0. Their convergence proof holds
-  // for any eps0 in (0, min(smallest target mass, smallest start mass)]; KMT take half of it.
-  // A tenth of that (0.05) accepts the step 1/2 where half rejected it only for the smallest
-  // cell dipping below eps0 while |g| fell by half (contrast 1e4: 1e4 Diracs 27 -> 25
-  // iterations, 1e5 36 -> 32; contrast 1e6, 1e4 Diracs: 45 -> 38). 0.005 gained nothing more.
-  const double eps0 =
-    MassFloorFactor * std::min(problem.current().minMass, *std::min_element(nu.begin(), nu.end()));
-  NewtonSystem system(static_cast<int>(std::max_element(nu.begin(), nu.end()) - nu.begin()));
-  std::vector<double> g(n), d;
-  std::vector<Height> trial(n);
-  double lastStep = 1.0;
-  for (int it = 0;; ++it)
+public:
+  NewtonIteration(NewtonProblem& problem, const std::vector<double>& nu,
+    const NewtonOptions& options, NewtonReport& report)
+    : Problem(problem)
+    , Nu(nu)
+    , Options(options)
+    , Report(report)
+    , System(static_cast<int>(std::max_element(nu.begin(), nu.end()) - nu.begin()))
   {
-    const NewtonEvaluation& ev = problem.current();
-    result.iterations = it;
-    result.relativeError = relativeError(ev.cellMass, nu);
-    if (progress && !progress(it, result.relativeError))
+    // KMT: every accepted step keeps each cell's mass above eps0. Their convergence proof holds
+    // for any eps0 in (0, min(smallest target mass, smallest start mass)]; KMT take half of
+    // it. A tenth of that (0.05) accepts the step 1/2 where half rejected it only for the
+    // smallest cell dipping below eps0 while |g| fell by half (contrast 1e4: 1e4 Diracs 27 ->
+    // 25 iterations, 1e5 36 -> 32; contrast 1e6, 1e4 Diracs: 45 -> 38). 0.005 gained nothing.
+    this->Eps0 = MassFloorFactor *
+      std::min(problem.current().minMass, *std::min_element(nu.begin(), nu.end()));
+  }
+
+  void run(std::vector<Height>& h)
+  {
+    const int n = static_cast<int>(this->Nu.size());
+    std::vector<double> g(n), d;
+    for (int it = 0; !this->stopsAt(it); ++it)
     {
-      result.aborted = true;
-      result.message = "aborted";
-      return;
+      const NewtonEvaluation& ev = this->Problem.current();
+      for (int i = 0; i < n; ++i)
+      {
+        g[i] = ev.cellMass[i] - this->Nu[i];
+      }
+      if (!this->System.solve(n, ev.coupling, g, this->Nu, d, this->residualTarget(), this->Report))
+      {
+        this->Report.message = "the Newton system could not be factorized (disconnected cells?)";
+        return;
+      }
+      const double gnorm = gradientNorm(ev.cellMass, this->Nu);
+      const double lambda = this->searchStep(h, d, gnorm);
+      if (lambda <= 0.0)
+      {
+        std::ostringstream msg;
+        msg << "Newton step rejected at every damping down to about " << -2.0 * lambda << " after "
+            << it << " iterations (relative error " << this->Report.relativeError
+            << "; the tolerance may be below what double precision allows here)";
+        this->Report.message = msg.str();
+        return;
+      }
+      this->Report.gradientNormHistory.push_back(gnorm);
+      this->Report.stepLengthHistory.push_back(lambda);
+      this->LastStep = lambda;
+      h.swap(this->Trial);
+      this->Problem.acceptTrial();
     }
-    if (result.relativeError <= tolerance)
+  }
+
+private:
+  // Records iteration `it` and tells whether the iteration ends there (converged, aborted, a
+  // single Dirac, or out of iterations), with the report's message.
+  bool stopsAt(int it)
+  {
+    NewtonReport& report = this->Report;
+    report.iterations = it;
+    report.relativeError = relativeError(this->Problem.current().cellMass, this->Nu);
+    std::ostringstream msg;
+    if (this->Options.progress && !this->Options.progress(it, report.relativeError))
     {
-      result.converged = true;
-      std::ostringstream msg;
-      msg << "converged in " << it << " Newton iterations, relative error " << result.relativeError;
-      result.message = msg.str();
-      return;
+      report.aborted = true;
+      msg << "aborted";
     }
-    if (n == 1)
+    else if (report.relativeError <= this->Options.tolerance)
     {
-      result.message = "a single Dirac: its cell is the whole domain";
-      return;
+      report.converged = true;
+      msg << "converged in " << it << " Newton iterations, relative error " << report.relativeError;
     }
-    if (it >= maximumNumberOfIterations)
+    else if (this->Nu.size() == 1)
     {
-      std::ostringstream msg;
+      msg << "a single Dirac: its cell is the whole domain";
+    }
+    else if (it >= this->Options.maximumNumberOfIterations)
+    {
       msg << "not converged after " << it << " Newton iterations: relative error "
-          << result.relativeError << " > tolerance " << tolerance;
-      result.message = msg.str();
-      return;
+          << report.relativeError << " > tolerance " << this->Options.tolerance;
     }
-    for (int i = 0; i < n; ++i)
-    {
-      g[i] = ev.cellMass[i] - nu[i];
-    }
-    const double gnorm = gradientNorm(ev.cellMass, nu);
-    // Far from the solution (damped steps, or cells off by more than their masses) an inexact
-    // Newton direction does as well: the last factorization preconditions conjugate gradients
-    // down to DampedResidual, and a new one is needed far less often (same iterations).
-    const double error = result.relativeError;
-    const NewtonSystem::ResidualTarget target = lastStep < 1.0 || error >= 1.0
+    report.message = msg.str();
+    return !report.message.empty();
+  }
+
+  // Far from the solution (damped steps, or cells off by more than their masses) an inexact
+  // Newton direction does as well: the last factorization preconditions conjugate gradients
+  // down to DampedResidual, and a new one is needed far less often (same iterations).
+  NewtonSystem::ResidualTarget residualTarget() const
+  {
+    const double error = this->Report.relativeError;
+    return this->LastStep < 1.0 || error >= 1.0
       ? NewtonSystem::ResidualTarget{ DampedResidual, 0.0 }
       : NewtonSystem::ResidualTarget{ ExactResidual,
-          std::max(ToleranceShare * tolerance, QuadraticShare * error * error) };
-    if (!system.solve(n, ev.coupling, g, nu, d, target, result))
-    {
-      result.message = "the Newton system could not be factorized (disconnected cells?)";
-      return;
-    }
+          std::max(ToleranceShare * this->Options.tolerance, QuadraticShare * error * error) };
+  }
+
+  // The damping of direction d: the accepted step (Trial then holds its heights and the
+  // problem its evaluation), or minus the last one tried when every damping was rejected.
+  double searchStep(const std::vector<Height>& h, const std::vector<double>& d, double gnorm)
+  {
+    const int n = static_cast<int>(this->Nu.size());
+    const double tolerance = this->Options.tolerance;
+    const double error = this->Report.relativeError;
     // The full step first (quadratic convergence near the solution); after it fails, the
     // backtracking resumes at 4x the last accepted step rather than at 1/2: every rejected
     // trial costs a whole evaluation, and high-contrast problems need damped steps for many
     // iterations in a row.
-    // Near the tolerance after full steps, Newton is in its quadratic regime: a step it must damp
-    // below 1/4 there meets the rounding floor of the cell masses, and further halvings only cost
-    // evaluations (with long double heights, 1e6 Diracs of contrast 1e4 stalled at 1.9e-10;
-    // every trial from 1 down to 2e-12 left the error at 1.9e-10 .. 3.3e-10, 3.5 s each).
-    const bool nearTolerance = lastStep == 1.0 && result.relativeError <= 1e3 * tolerance;
+    // Near the tolerance after full steps, Newton is in its quadratic regime: a step it must
+    // damp below 1/4 there meets the rounding floor of the cell masses, and further halvings
+    // only cost evaluations (with long double heights, 1e6 Diracs of contrast 1e4 stalled at
+    // 1.9e-10; every trial from 1 down to 2e-12 left the error at 1.9e-10 .. 3.3e-10).
+    const bool nearTolerance = this->LastStep == 1.0 && error <= 1e3 * tolerance;
     const double smallestStep = nearTolerance ? 0.25 : 0.0;
+    this->Trial.resize(n);
     double lambda = 1.0;
-    bool accepted = false;
     for (int trialCount = 0; trialCount < 40 && lambda >= smallestStep; ++trialCount)
     {
       for (int i = 0; i < n; ++i)
       {
-        trial[i] = h[i] + lambda * d[i];
+        this->Trial[i] = h[i] + lambda * d[i];
       }
-      if (!problem.certainlyHidesADirac(trial, result))
+      if (!this->Problem.certainlyHidesADirac(this->Trial, this->Report))
       {
-        const NewtonEvaluation& trialEv = problem.evaluateTrial(trial, result);
+        const NewtonEvaluation& trialEv = this->Problem.evaluateTrial(this->Trial, this->Report);
         // KMT's rule guarantees global convergence. Near the solution |g|_2 sits at the
         // rounding level of the largest cells while small cells still have relative errors to
         // remove: a full step that halves the largest relative error is then accepted as well,
         // and so is one that reaches the tolerance (1e5 Diracs, contrast 1e4, seed 3:
-        // |g|_2 = 2e-16, the full step took the error from 1.08e-10 to 6.6e-11 and was rejected
-        // at every damping).
-        const double trialError = relativeError(trialEv.cellMass, nu);
-        if (trialEv.minMass >= eps0 &&
-          (gradientNorm(trialEv.cellMass, nu) <= (1.0 - 0.5 * lambda) * gnorm ||
-            trialError <= tolerance || (lambda == 1.0 && trialError < 0.5 * result.relativeError)))
+        // |g|_2 = 2e-16, the full step took the error from 1.08e-10 to 6.6e-11 and was
+        // rejected at every damping).
+        const double trialError = relativeError(trialEv.cellMass, this->Nu);
+        if (trialEv.minMass >= this->Eps0 &&
+          (gradientNorm(trialEv.cellMass, this->Nu) <= (1.0 - 0.5 * lambda) * gnorm ||
+            trialError <= tolerance || (lambda == 1.0 && trialError < 0.5 * error)))
         {
-          accepted = true;
-          break;
+          return lambda;
         }
       }
-      lambda = lambda == 1.0 ? std::min(0.5, 4.0 * lastStep) : 0.5 * lambda;
+      lambda = lambda == 1.0 ? std::min(0.5, 4.0 * this->LastStep) : 0.5 * lambda;
     }
-    if (!accepted)
-    {
-      std::ostringstream msg;
-      msg << "Newton step rejected at every damping down to about " << 2.0 * lambda << " after "
-          << it << " iterations (relative error " << result.relativeError
-          << "; the tolerance may be below what double precision allows here)";
-      result.message = msg.str();
-      return;
-    }
-    result.gradientNormHistory.push_back(gnorm);
-    result.stepLengthHistory.push_back(lambda);
-    lastStep = lambda;
-    h.swap(trial);
-    problem.acceptTrial();
+    return -lambda;
   }
+
+  NewtonProblem& Problem;
+  const std::vector<double>& Nu;
+  const NewtonOptions& Options;
+  NewtonReport& Report;
+  NewtonSystem System;
+  double Eps0 = 0.0;
+  double LastStep = 1.0;
+  std::vector<Height> Trial;
+};
+
+} // namespace
+
+void dampedNewton(NewtonProblem& problem, const std::vector<double>& nu, std::vector<Height>& h,
+  const NewtonOptions& options, NewtonReport& report)
+{
+  NewtonIteration(problem, nu, options, report).run(h);
 }
 
 std::vector<double> hessianDiagonal(int n, const std::vector<Eigen::Triplet<double>>& coupling)
