@@ -520,17 +520,10 @@ std::int64_t foldedTriangles(const SurfaceMesh& mesh, const std::vector<Vec2>& u
   return folded;
 }
 
-ConformalDiskMapResult computeWithLaplacian(const SurfaceMesh& mesh,
-  const std::vector<int>& boundaryLoop, const ConformalDiskMapOptions& options,
-  bool intrinsicLaplacian)
+// What is wrong with the normalization vertices or the stopping rule, or "".
+std::string checkOptions(
+  const ConformalDiskMapOptions& options, const std::vector<char>& onBoundary, int nv)
 {
-  ConformalDiskMapResult result;
-  const int nv = static_cast<int>(mesh.points.size());
-  std::vector<char> onBoundary(nv, 0);
-  for (int v : boundaryLoop)
-  {
-    onBoundary[v] = 1;
-  }
   std::ostringstream msg;
   if (options.centerVertex >= nv || options.centerVertex < -1)
   {
@@ -555,7 +548,157 @@ ConformalDiskMapResult computeWithLaplacian(const SurfaceMesh& mesh,
   {
     msg << "the tolerance must be positive and the iteration count non-negative";
   }
-  result.status.error = msg.str();
+  return msg.str();
+}
+
+// Descent on the boundary angles theta from the start X = extend(theta): the conformal energy
+// decreases at every accepted step. Returns false when the progress callback aborts.
+bool minimizeConformalEnergy(const DiskFlattening& disk, const ConformalDiskMapOptions& options,
+  const std::function<bool(double)>& keepGoing, Eigen::VectorXd& theta, Eigen::MatrixXd& X,
+  ConformalDiskMapResult& result)
+{
+  double energy = disk.conformalEnergy(X, theta);
+  for (int it = 0; it < options.maximumNumberOfIterations; ++it)
+  {
+    const Eigen::VectorXd direction = disk.descentDirection(X, theta);
+    // The preconditioned Hessian's spectrum is ~[1/2, 1): 4/3 is the best fixed step (each
+    // mode contracts by <= 1/3); measured 8-12 iterations instead of 11-18 with step 1.
+    double step = 4.0 / 3.0;
+    bool accepted = false;
+    Eigen::VectorXd trial;
+    Eigen::MatrixXd trialX;
+    double trialEnergy = energy;
+    for (int halving = 0; halving < 12 && !accepted; ++halving, step *= 0.5)
+    {
+      trial = theta + step * direction;
+      if (!disk.ordered(trial))
+      {
+        continue;
+      }
+      trialX = disk.extend(trial);
+      trialEnergy = disk.conformalEnergy(trialX, trial);
+      accepted = trialEnergy <= energy;
+    }
+    if (!accepted)
+    {
+      break; // the energy is flat to rounding: converged
+    }
+    step *= 2.0; // undo the loop's last halving
+    result.iterations = it + 1;
+    result.lastAngleUpdate = step * direction.cwiseAbs().maxCoeff();
+    theta = trial;
+    X = trialX;
+    energy = trialEnergy;
+    if (!keepGoing(0.2 + 0.6 * (it + 1) / std::max(1, options.maximumNumberOfIterations)))
+    {
+      return false;
+    }
+    if (result.lastAngleUpdate < options.tolerance)
+    {
+      break;
+    }
+  }
+  result.conformalEnergy = energy;
+  return true;
+}
+
+// Moebius normalization on the boundary angles, re-extending each time so the interior stays
+// harmonic; the discrete map is not exactly Moebius-equivariant, so a few rounds take the
+// centre's offset down (by ~500x per round, measured); the last bit is applied to the points.
+void centreByMoebius(
+  const DiskFlattening& disk, int center, Eigen::VectorXd& theta, Eigen::MatrixXd& X)
+{
+  for (int round = 0; round < 8; ++round)
+  {
+    const std::complex<double> a(X(center, 0), X(center, 1));
+    if (std::abs(a) < 1e-9)
+    {
+      break;
+    }
+    Eigen::VectorXd moved(disk.NB);
+    for (int i = 0; i < disk.NB; ++i)
+    {
+      moved[i] = std::arg(moebius(std::polar(1.0, theta[i]), a));
+    }
+    // Unwrap so that the angles increase from moved[0].
+    for (int i = 1; i < disk.NB; ++i)
+    {
+      while (moved[i] <= moved[i - 1])
+      {
+        moved[i] += TwoPi;
+      }
+    }
+    if (!disk.ordered(moved))
+    {
+      break; // the centre is so close to the circle that angles collapse in double precision
+    }
+    theta = moved;
+    X = disk.extend(theta);
+  }
+}
+
+// Results per mesh point: the solve's points, clipped ears between their neighbours, with the
+// exact final rotation and centring.
+void placePoints(const SurfaceMesh& mesh, const ClippedMesh& clipped, const DiskFlattening& disk,
+  const Eigen::VectorXd& theta, const Eigen::MatrixXd& X, int center,
+  const std::vector<char>& onBoundary, ConformalDiskMapResult& result)
+{
+  const int nv = static_cast<int>(mesh.points.size());
+  std::vector<double> angle(nv, 0.0);
+  for (int i = 0; i < disk.NB; ++i)
+  {
+    angle[disk.Vertices[i]] = theta[i];
+  }
+  for (auto it = clipped.ears.rbegin(); it != clipped.ears.rend(); ++it)
+  {
+    const auto [ear, before, after] = *it;
+    double span = std::remainder(angle[after] - angle[before], TwoPi);
+    if (span <= 0.0)
+    {
+      span += TwoPi;
+    }
+    const double a = edgeLength(mesh, before, ear), b = edgeLength(mesh, ear, after);
+    angle[ear] = angle[before] + span * a / (a + b);
+  }
+  // Exact final rotation and centring: the remaining centre offset is below 1e-9, so the
+  // Moebius map applied to the points themselves changes the triangles negligibly.
+  const std::complex<double> a(X(center, 0), X(center, 1));
+  const double alignAngle = std::arg(moebius(std::polar(1.0, angle[result.alignVertex]), a));
+  const std::complex<double> rotation = std::polar(1.0, -alignAngle);
+  result.uv.assign(nv, Vec2());
+  for (int v = 0; v < nv; ++v)
+  {
+    if (onBoundary[v])
+    {
+      // Exactly on the circle: cos/sin of the final angle, (1, 0) for the align vertex.
+      const double final = v == result.alignVertex
+        ? 0.0
+        : std::arg(moebius(std::polar(1.0, angle[v]), a)) - alignAngle;
+      result.uv[v] = { std::cos(final), std::sin(final) };
+    }
+    else
+    {
+      const int local = disk.Local[v];
+      const std::complex<double> z =
+        rotation * moebius(std::complex<double>(X(local, 0), X(local, 1)), a);
+      result.uv[v] = { z.real(), z.imag() };
+    }
+  }
+  result.uv[result.centerVertex] = { 0.0, 0.0 };
+}
+
+ConformalDiskMapResult computeWithLaplacian(const SurfaceMesh& mesh,
+  const std::vector<int>& boundaryLoop, const ConformalDiskMapOptions& options,
+  bool intrinsicLaplacian)
+{
+  ConformalDiskMapResult result;
+  const int nv = static_cast<int>(mesh.points.size());
+  std::vector<char> onBoundary(nv, 0);
+  for (int v : boundaryLoop)
+  {
+    onBoundary[v] = 1;
+  }
+  result.status.error = checkOptions(options, onBoundary, nv);
   if (!result.status.error.empty())
   {
     return result;
@@ -600,127 +743,17 @@ ConformalDiskMapResult computeWithLaplacian(const SurfaceMesh& mesh,
     theta = DiskFlattening::anglesFromLengths(lengths);
   }
   Eigen::MatrixXd X = disk.extend(theta);
-  double energy = disk.conformalEnergy(X, theta);
-  for (int it = 0; it < options.maximumNumberOfIterations; ++it)
+  if (!minimizeConformalEnergy(disk, options, keepGoing, theta, X, result))
   {
-    const Eigen::VectorXd direction = disk.descentDirection(X, theta);
-    // The preconditioned Hessian's spectrum is ~[1/2, 1): 4/3 is the best fixed step (each
-    // mode contracts by <= 1/3); measured 8-12 iterations instead of 11-18 with step 1.
-    double step = 4.0 / 3.0;
-    bool accepted = false;
-    Eigen::VectorXd trial;
-    Eigen::MatrixXd trialX;
-    double trialEnergy = energy;
-    for (int halving = 0; halving < 12 && !accepted; ++halving, step *= 0.5)
-    {
-      trial = theta + step * direction;
-      if (!disk.ordered(trial))
-      {
-        continue;
-      }
-      trialX = disk.extend(trial);
-      trialEnergy = disk.conformalEnergy(trialX, trial);
-      accepted = trialEnergy <= energy;
-    }
-    if (!accepted)
-    {
-      break; // the energy is flat to rounding: converged
-    }
-    step *= 2.0; // undo the loop's last halving
-    result.iterations = it + 1;
-    result.lastAngleUpdate = step * direction.cwiseAbs().maxCoeff();
-    theta = trial;
-    X = trialX;
-    energy = trialEnergy;
-    if (!keepGoing(0.2 + 0.6 * (it + 1) / std::max(1, options.maximumNumberOfIterations)))
-    {
-      return result;
-    }
-    if (result.lastAngleUpdate < options.tolerance)
-    {
-      break;
-    }
+    return result;
   }
-  result.conformalEnergy = energy;
-
-  // Moebius normalization on the boundary angles, re-extending each time so the interior stays
-  // harmonic; the discrete map is not exactly Moebius-equivariant, so a few rounds take the
-  // centre's offset down (by ~500x per round, measured); the last bit is applied to the points.
   result.centerVertex = options.centerVertex >= 0
     ? options.centerVertex
     : disk.Vertices[areaBarycentreVertex(mesh, clipped, disk, X)];
   const int center = disk.Local[result.centerVertex];
-  for (int round = 0; round < 8; ++round)
-  {
-    const std::complex<double> a(X(center, 0), X(center, 1));
-    if (std::abs(a) < 1e-9)
-    {
-      break;
-    }
-    Eigen::VectorXd moved(disk.NB);
-    for (int i = 0; i < disk.NB; ++i)
-    {
-      moved[i] = std::arg(moebius(std::polar(1.0, theta[i]), a));
-    }
-    // Unwrap so that the angles increase from moved[0].
-    for (int i = 1; i < disk.NB; ++i)
-    {
-      while (moved[i] <= moved[i - 1])
-      {
-        moved[i] += TwoPi;
-      }
-    }
-    if (!disk.ordered(moved))
-    {
-      break; // the centre is so close to the circle that angles collapse in double precision
-    }
-    theta = moved;
-    X = disk.extend(theta);
-  }
+  centreByMoebius(disk, center, theta, X);
   result.secondsIterations = secondsSince(t0);
-
-  // Results per mesh point: the solve's points, clipped ears between their neighbours.
-  std::vector<double> angle(nv, 0.0);
-  for (int i = 0; i < disk.NB; ++i)
-  {
-    angle[disk.Vertices[i]] = theta[i];
-  }
-  for (auto it = clipped.ears.rbegin(); it != clipped.ears.rend(); ++it)
-  {
-    const auto [ear, before, after] = *it;
-    double span = std::remainder(angle[after] - angle[before], TwoPi);
-    if (span <= 0.0)
-    {
-      span += TwoPi;
-    }
-    const double a = edgeLength(mesh, before, ear), b = edgeLength(mesh, ear, after);
-    angle[ear] = angle[before] + span * a / (a + b);
-  }
-  // Exact final rotation and centring: the remaining centre offset is below 1e-9, so the
-  // Moebius map applied to the points themselves changes the triangles negligibly.
-  const std::complex<double> a(X(center, 0), X(center, 1));
-  const double alignAngle = std::arg(moebius(std::polar(1.0, angle[result.alignVertex]), a));
-  const std::complex<double> rotation = std::polar(1.0, -alignAngle);
-  result.uv.assign(nv, Vec2());
-  for (int v = 0; v < nv; ++v)
-  {
-    if (onBoundary[v])
-    {
-      // Exactly on the circle: cos/sin of the final angle, (1, 0) for the align vertex.
-      const double final = v == result.alignVertex
-        ? 0.0
-        : std::arg(moebius(std::polar(1.0, angle[v]), a)) - alignAngle;
-      result.uv[v] = { std::cos(final), std::sin(final) };
-    }
-    else
-    {
-      const int local = disk.Local[v];
-      const std::complex<double> z =
-        rotation * moebius(std::complex<double>(X(local, 0), X(local, 1)), a);
-      result.uv[v] = { z.real(), z.imag() };
-    }
-  }
-  result.uv[result.centerVertex] = { 0.0, 0.0 };
+  placePoints(mesh, clipped, disk, theta, X, center, onBoundary, result);
   keepGoing(1.0);
   return result;
 }
