@@ -3,6 +3,8 @@
 #ifndef OTPARAM_COMMON_STATUS_H
 #define OTPARAM_COMMON_STATUS_H
 
+#include <cmath>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -21,6 +23,30 @@ struct Status
 
   bool ok() const { return this->error.empty() && !this->aborted; }
 };
+
+// The value checks of options, worded as the filters' messages ("Tolerance must be positive
+// and finite; got 0."): "" when the value is fine.
+inline std::string checkPositiveFinite(const char* name, double value)
+{
+  if (value > 0.0 && std::isfinite(value))
+  {
+    return {};
+  }
+  std::ostringstream msg;
+  msg << name << " must be positive and finite; got " << value << ".";
+  return msg.str();
+}
+
+inline std::string checkAtLeast(const char* name, long long value, long long minimum)
+{
+  if (value >= minimum)
+  {
+    return {};
+  }
+  std::ostringstream msg;
+  msg << name << " must be at least " << minimum << "; got " << value << ".";
+  return msg.str();
+}
 
 } // namespace otparam
 

@@ -12,28 +12,6 @@ namespace otparam
 
 namespace
 {
-std::string finiteAndPositive(const char* name, double value)
-{
-  if (value > 0.0 && std::isfinite(value))
-  {
-    return {};
-  }
-  std::ostringstream msg;
-  msg << name << " must be positive and finite; got " << value << ".";
-  return msg.str();
-}
-
-std::string atLeast(const char* name, long long value, long long minimum)
-{
-  if (value >= minimum)
-  {
-    return {};
-  }
-  std::ostringstream msg;
-  msg << name << " must be at least " << minimum << "; got " << value << ".";
-  return msg.str();
-}
-
 // Soup ids of the normalization points -> ids of the compacted surface, checked against the
 // boundary loop; "" or the message.
 std::string normalizationVertices(const TriangleSoup& soup, const ConformalStageOptions& options,
@@ -95,10 +73,10 @@ std::string normalizationVertices(const TriangleSoup& soup, const ConformalStage
 //------------------------------------------------------------------------------
 std::string ConformalStageOptions::check() const
 {
-  std::string error = finiteAndPositive("Tolerance", this->map.tolerance);
+  std::string error = checkPositiveFinite("Tolerance", this->map.tolerance);
   if (error.empty())
   {
-    error = atLeast("MaximumNumberOfIterations", this->map.maximumNumberOfIterations, 0);
+    error = checkAtLeast("MaximumNumberOfIterations", this->map.maximumNumberOfIterations, 0);
   }
   return error;
 }
@@ -173,40 +151,6 @@ ConformalStage runConformalStage(const TriangleSoup& soup, const ConformalStageO
     status.warnings.push_back(msg.str());
   }
   return stage;
-}
-
-//------------------------------------------------------------------------------
-std::string checkSamplerOptions(const SamplerOptions& options)
-{
-  std::ostringstream msg;
-  const int mode = static_cast<int>(options.mode);
-  const int rule = static_cast<int>(options.sizeRule);
-  if (mode < 0 || mode > 2)
-  {
-    msg << "SamplingMode must be 0 (Adaptive), 1 (Uniform) or 2 (MeshVertices); got " << mode
-        << ".";
-  }
-  else if (rule < 0 || rule > 1)
-  {
-    msg << "SizeRule must be 0 (R * sqrt(density)) or 1 (R * density); got " << rule << ".";
-  }
-  else if (options.numberOfSamples < 3)
-  {
-    msg << "NumberOfSamples must be at least 3; got " << options.numberOfSamples << ".";
-  }
-  else if (options.numberOfSamples > options.maximumNumberOfSamples)
-  {
-    msg << "NumberOfSamples = " << options.numberOfSamples
-        << " is above MaximumNumberOfSamples = " << options.maximumNumberOfSamples
-        << "; raise MaximumNumberOfSamples or ask for fewer.";
-  }
-  else if (!(options.minimumAngleDegrees > 0.0) || !(options.minimumAngleDegrees <= 35.0))
-  {
-    msg << "MinimumAngle must be in (0, 35] degrees (Delaunay refinement does not terminate "
-           "for larger bounds); got "
-        << options.minimumAngleDegrees << ".";
-  }
-  return msg.str();
 }
 
 //------------------------------------------------------------------------------
@@ -333,23 +277,6 @@ SamplingStage runSamplingStage(const std::vector<Vec2>& points,
   status.warnings.insert(
     status.warnings.end(), result.status.warnings.begin(), result.status.warnings.end());
   return stage;
-}
-
-//------------------------------------------------------------------------------
-std::string checkTransportOptions(const OTOptions& options, double maximumArcAngle)
-{
-  std::string error = finiteAndPositive("Tolerance", options.tolerance);
-  if (error.empty())
-  {
-    error = atLeast("MaximumNumberOfIterations", options.maximumNumberOfIterations, 1);
-  }
-  if (error.empty() && !(maximumArcAngle > 0.0 && maximumArcAngle <= 1.0))
-  {
-    std::ostringstream msg;
-    msg << "MaximumArcAngle must be in (0, 1] radians; got " << maximumArcAngle << ".";
-    error = msg.str();
-  }
-  return error;
 }
 
 //------------------------------------------------------------------------------

@@ -49,7 +49,6 @@ struct ConformalStage
 ConformalStage runConformalStage(const TriangleSoup& soup, const ConformalStageOptions& options);
 
 // ---- Stage 2: samples of equal mass of a density on a planar triangulated domain.
-std::string checkSamplerOptions(const SamplerOptions& options);
 
 // What is wrong with density values, or "": "must be finite and >= 0, but it is NaN at point
 // id(s) 3, 7" / "is zero everywhere (all 25 points of the domain); ...". `what` names one value
@@ -70,7 +69,6 @@ SamplingStage runSamplingStage(const std::vector<Vec2>& points,
   const std::vector<double>& perTriangle, const SamplerOptions& options);
 
 // ---- Stage 3: semi-discrete transport from a planar source to Diracs.
-std::string checkTransportOptions(const OTOptions& options, double maximumArcAngle);
 
 struct TransportStage
 {

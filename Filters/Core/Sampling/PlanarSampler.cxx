@@ -1133,19 +1133,146 @@ void sampleSupport(
       return finishSupportCandidate(field, options, *source, loops, interior, result.sourceMass);
     });
 }
+// MeshVertices mode: the used points in input order (so that the input's point arrays line
+// up) with the input's triangles.
+void takeMeshVertices(const DensityField& field, SamplerResult& result)
+{
+  // The used points in input order, so that the input's point arrays line up.
+  std::vector<int> id(field.points().size(), -1);
+  for (const Triangle& t : field.triangles())
+  {
+    for (int v : t)
+    {
+      id[v] = 0;
+    }
+  }
+  for (size_t v = 0; v < id.size(); ++v)
+  {
+    if (id[v] == 0)
+    {
+      id[v] = static_cast<int>(result.samples.size());
+      result.samples.push_back(field.points()[v]);
+    }
+  }
+  for (const Triangle& t : field.triangles())
+  {
+    result.triangles.push_back({ id[t[0]], id[t[1]], id[t[2]] });
+  }
+}
+
+// The nu-area of the domain: the integral of the grading squared, from which eps follows.
+double gradedArea(const DensityField& field, const SamplerOptions& options)
+{
+  double integral = 0.0;
+  {
+    const auto& pts = field.points();
+    for (const Triangle& t : field.triangles())
+    {
+      const Vec2 c = (1.0 / 3.0) * (pts[t[0]] + pts[t[1]] + pts[t[2]]);
+      const double area = 0.5 * std::abs(cross(pts[t[1]] - pts[t[0]], pts[t[2]] - pts[t[0]]));
+      const double g = options.mode == SamplingMode::Adaptive ? field.value(c) : 1.0;
+      const double grade = options.sizeRule == SizeRule::SqrtDensity ? std::sqrt(g) : g;
+      integral += area * grade * grade;
+    }
+  }
+  return integral;
+}
+
+// A convex domain: refinement runs whose eps is corrected from the count each reached, then
+// the relaxation towards equal masses (kept only when it makes the masses more even).
+void sampleConvex(
+  const DensityField& field, const SamplerOptions& options, double integral, SamplerResult& result)
+{
+  const double target = static_cast<double>(options.numberOfSamples);
+  double runTarget = target >= 4000.0 ? target / 4.0 : target;
+  double epsilon = std::sqrt(integral / runTarget);
+  double done = 0.0;
+  std::unique_ptr<Refinement> refinement;
+  std::unordered_set<const void*> drop; // boundary samples dropped from the last run
+  for (int run = 0; run < 5; ++run)
+  {
+    refinement = std::make_unique<Refinement>(field, options, epsilon);
+    ++result.refinementRuns;
+    const double share = runTarget / (target * 2.2); // rough share of the total work
+    const bool finished = refinement->run(
+      [&](long long count)
+      {
+        return !options.progress ||
+          options.progress(std::min(0.9, done + 0.9 * share * count / runTarget));
+      });
+    done = std::min(0.9, done + 0.9 * share);
+    if (!finished)
+    {
+      result.status.aborted = true;
+      return;
+    }
+    drop = boundaryToDrop(refinement->triangulation(), field);
+    const double count =
+      static_cast<double>(refinement->triangulation().number_of_vertices() - drop.size());
+    result.epsilon = epsilon;
+    if (refinement->capped())
+    {
+      break;
+    }
+    epsilon *= std::sqrt(count / target);
+    if (runTarget == target && std::abs(count / target - 1.0) <= 0.08)
+    {
+      break;
+    }
+    runTarget = target;
+  }
+  result.capped = refinement->capped();
+  const DT& dt = refinement->triangulation();
+  std::unordered_set<const void*> hull;
+  for (VertexHandle v : hullVertices(dt))
+  {
+    hull.insert(&*v);
+  }
+  std::vector<char> onBoundary;
+  for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v)
+  {
+    if (!drop.count(&*v))
+    {
+      result.samples.push_back(toVec(v->point()));
+      onBoundary.push_back(hull.count(&*v) ? 1 : 0);
+    }
+  }
+  std::string error;
+  const auto source = field.makeSource(error);
+  if (!source)
+  {
+    result.status.error = error;
+    return;
+  }
+  // Lloyd steps even out the masses of well-resolved densities, but on a density that varies
+  // faster than the samples can follow (a conformal image with singular corners sampled by a
+  // few hundred points) they can make things worse: when the relaxed masses spread by more
+  // than 0.3, the unrelaxed samples are tried too and the more even set is kept (Uniform mode
+  // always relaxes: it is a sampling of the area).
+  const std::vector<Vec2> refined = result.samples;
+  std::vector<Vec2> relaxed = refined;
+  if (!relax(field, options, relaxed, onBoundary, error))
+  {
+    result.status.error = error;
+    return;
+  }
+  if (options.progress && !options.progress(0.9))
+  {
+    result.status.aborted = true;
+    return;
+  }
+  adoptCandidate(result, finishCandidate(field, options, *source, relaxed, result.sourceMass),
+    options.mode == SamplingMode::Adaptive,
+    [&] { return finishCandidate(field, options, *source, refined, result.sourceMass); });
+}
 } // namespace
 
 SamplerResult sampleDensity(const DensityField& field, const SamplerOptions& options)
 {
   SamplerResult result;
-  if (options.numberOfSamples < 3 || options.maximumNumberOfSamples < options.numberOfSamples)
+  result.status.error = checkSamplerOptions(options);
+  if (!result.status.error.empty())
   {
-    result.status.error = "the number of samples must be at least 3 and at most the maximum";
-    return result;
-  }
-  if (!(options.minimumAngleDegrees > 0.0 && options.minimumAngleDegrees <= 35.0))
-  {
-    result.status.error = "the minimum angle must be in (0, 35] degrees";
     return result;
   }
   result.sourceMass = field.isUnitDisk() ? Pi : field.area();
@@ -1153,135 +1280,25 @@ SamplerResult sampleDensity(const DensityField& field, const SamplerOptions& opt
 
   if (options.mode == SamplingMode::MeshVertices)
   {
-    // The used points in input order, so that the input's point arrays line up.
-    std::vector<int> id(field.points().size(), -1);
-    for (const Triangle& t : field.triangles())
-    {
-      for (int v : t)
-      {
-        id[v] = 0;
-      }
-    }
-    for (size_t v = 0; v < id.size(); ++v)
-    {
-      if (id[v] == 0)
-      {
-        id[v] = static_cast<int>(result.samples.size());
-        result.samples.push_back(field.points()[v]);
-      }
-    }
-    for (const Triangle& t : field.triangles())
-    {
-      result.triangles.push_back({ id[t[0]], id[t[1]], id[t[2]] });
-    }
+    takeMeshVertices(field, result);
   }
   else
   {
     // eps from the target count: the count scales like 1 / eps^2, so one run at a sixteenth of
     // the target calibrates the constant, and one or two more land within 10% of the target.
-    double integral = 0.0; // integral of grading^2, the nu-area of the domain
-    {
-      const auto& pts = field.points();
-      for (const Triangle& t : field.triangles())
-      {
-        const Vec2 c = (1.0 / 3.0) * (pts[t[0]] + pts[t[1]] + pts[t[2]]);
-        const double area = 0.5 * std::abs(cross(pts[t[1]] - pts[t[0]], pts[t[2]] - pts[t[0]]));
-        const double g = options.mode == SamplingMode::Adaptive ? field.value(c) : 1.0;
-        const double grade = options.sizeRule == SizeRule::SqrtDensity ? std::sqrt(g) : g;
-        integral += area * grade * grade;
-      }
-    }
+    const double integral = gradedArea(field, options);
     const double target = static_cast<double>(options.numberOfSamples);
-    if (!field.isConvex())
+    if (field.isConvex())
     {
-      sampleSupport(field, options, integral, result);
-      if (result.status.aborted || !result.status.error.empty())
-      {
-        return result;
-      }
+      sampleConvex(field, options, integral, result);
     }
     else
     {
-      double runTarget = target >= 4000.0 ? target / 4.0 : target;
-      double epsilon = std::sqrt(integral / runTarget);
-      double done = 0.0;
-      std::unique_ptr<Refinement> refinement;
-      std::unordered_set<const void*> drop; // boundary samples dropped from the last run
-      for (int run = 0; run < 5; ++run)
-      {
-        refinement = std::make_unique<Refinement>(field, options, epsilon);
-        ++result.refinementRuns;
-        const double share = runTarget / (target * 2.2); // rough share of the total work
-        const bool finished = refinement->run(
-          [&](long long count)
-          {
-            return !options.progress ||
-              options.progress(std::min(0.9, done + 0.9 * share * count / runTarget));
-          });
-        done = std::min(0.9, done + 0.9 * share);
-        if (!finished)
-        {
-          result.status.aborted = true;
-          return result;
-        }
-        drop = boundaryToDrop(refinement->triangulation(), field);
-        const double count =
-          static_cast<double>(refinement->triangulation().number_of_vertices() - drop.size());
-        result.epsilon = epsilon;
-        if (refinement->capped())
-        {
-          break;
-        }
-        epsilon *= std::sqrt(count / target);
-        if (runTarget == target && std::abs(count / target - 1.0) <= 0.08)
-        {
-          break;
-        }
-        runTarget = target;
-      }
-      result.capped = refinement->capped();
-      const DT& dt = refinement->triangulation();
-      std::unordered_set<const void*> hull;
-      for (VertexHandle v : hullVertices(dt))
-      {
-        hull.insert(&*v);
-      }
-      std::vector<char> onBoundary;
-      for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v)
-      {
-        if (!drop.count(&*v))
-        {
-          result.samples.push_back(toVec(v->point()));
-          onBoundary.push_back(hull.count(&*v) ? 1 : 0);
-        }
-      }
-      std::string error;
-      const auto source = field.makeSource(error);
-      if (!source)
-      {
-        result.status.error = error;
-        return result;
-      }
-      // Lloyd steps even out the masses of well-resolved densities, but on a density that varies
-      // faster than the samples can follow (a conformal image with singular corners sampled by a
-      // few hundred points) they can make things worse: when the relaxed masses spread by more
-      // than 0.3, the unrelaxed samples are tried too and the more even set is kept (Uniform mode
-      // always relaxes: it is a sampling of the area).
-      const std::vector<Vec2> refined = result.samples;
-      std::vector<Vec2> relaxed = refined;
-      if (!relax(field, options, relaxed, onBoundary, error))
-      {
-        result.status.error = error;
-        return result;
-      }
-      if (options.progress && !options.progress(0.9))
-      {
-        result.status.aborted = true;
-        return result;
-      }
-      adoptCandidate(result, finishCandidate(field, options, *source, relaxed, result.sourceMass),
-        options.mode == SamplingMode::Adaptive,
-        [&] { return finishCandidate(field, options, *source, refined, result.sourceMass); });
+      sampleSupport(field, options, integral, result);
+    }
+    if (result.status.aborted || !result.status.error.empty())
+    {
+      return result;
     }
     result.secondsRefinement = secondsSince(t0) - result.secondsMasses;
     const double reached = static_cast<double>(result.samples.size());

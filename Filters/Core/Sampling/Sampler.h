@@ -58,6 +58,9 @@ struct SamplerResult
   double secondsMasses = 0.0;
 };
 
+// What is wrong with a value of the options (named as the filters' properties), or "".
+std::string checkSamplerOptions(const SamplerOptions& options);
+
 } // namespace otparam
 
 #endif

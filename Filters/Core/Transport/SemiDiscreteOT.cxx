@@ -1,5 +1,6 @@
 #include "Transport/SemiDiscreteOT.h"
 
+#include "Common/Status.h"
 #include "Transport/DampedNewton.h"
 #include "Transport/MultiscaleStart.h"
 #include "Transport/PlanarPowerDiagram.h"
@@ -245,6 +246,22 @@ void solveByNewton(const SourceMeasure& source, const std::vector<Vec2>& diracs,
 }
 
 } // namespace
+
+std::string checkTransportOptions(const OTOptions& options, double maximumArcAngle)
+{
+  std::string error = checkPositiveFinite("Tolerance", options.tolerance);
+  if (error.empty())
+  {
+    error = checkAtLeast("MaximumNumberOfIterations", options.maximumNumberOfIterations, 1);
+  }
+  if (error.empty() && !(maximumArcAngle > 0.0 && maximumArcAngle <= 1.0))
+  {
+    std::ostringstream msg;
+    msg << "MaximumArcAngle must be in (0, 1] radians; got " << maximumArcAngle << ".";
+    error = msg.str();
+  }
+  return error;
+}
 
 std::string validateDiracs(const std::vector<Vec2>& diracs, const std::vector<double>& masses)
 {

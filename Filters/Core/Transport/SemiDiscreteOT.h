@@ -48,6 +48,10 @@ struct OTResult : NewtonReport
   std::vector<Vec2> centroids;  // barycentre of each clipped power cell (density-weighted)
 };
 
+// What is wrong with a value of the options or the arcs' angle (named as the filters'
+// properties), or "".
+std::string checkTransportOptions(const OTOptions& options, double maximumArcAngle);
+
 // Validates diracs/masses (finite, positive, distinct) and returns an empty string or a message
 // naming the offending ids.
 std::string validateDiracs(const std::vector<Vec2>& diracs, const std::vector<double>& masses);
