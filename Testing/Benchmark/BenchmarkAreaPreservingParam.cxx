@@ -9,7 +9,6 @@
 #include "MeshFiles.h"
 #include "Pipeline/AreaPreservingPipeline.h"
 
-#include <chrono>
 #include <cstdio>
 #include <cstring>
 #include <string>
@@ -20,12 +19,6 @@ using otparam::benchmark::medianOf;
 
 namespace
 {
-using Clock = std::chrono::steady_clock;
-double seconds(Clock::time_point t0)
-{
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
-
 struct Reference
 {
   const char* mesh;

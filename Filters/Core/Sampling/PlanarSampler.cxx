@@ -72,6 +72,35 @@ bool isSliver(const Point& p, const Point& q, const Point& r)
   return twiceArea <= 1e-10 * longest;
 }
 
+// Progress over the refinement runs: each run gets its rough share of the first 90% of the
+// work (the runs together refine about 2.2 times the target count).
+class RefinementProgress
+{
+public:
+  explicit RefinementProgress(const SamplerOptions& options)
+    : Options(options)
+  {
+  }
+
+  // The callback of the next run, which aims at runTarget samples (of target in all).
+  std::function<bool(long long)> ofRun(double runTarget, double target)
+  {
+    const double share = runTarget / (target * 2.2);
+    const double done = this->Done;
+    this->Done = std::min(0.9, this->Done + 0.9 * share);
+    const SamplerOptions& options = this->Options;
+    return [&options, done, share, runTarget](long long count)
+    {
+      return !options.progress ||
+        options.progress(std::min(0.9, done + 0.9 * share * count / runTarget));
+    };
+  }
+
+private:
+  const SamplerOptions& Options;
+  double Done = 0.0;
+};
+
 class Refinement
 {
 public:
@@ -958,7 +987,7 @@ void sampleSupport(
   double epsilon = std::sqrt(integral / runTarget);
   std::unique_ptr<CDT> cdt;
   std::vector<std::vector<Vec2>> refinedLoops, loops; // all boundary samples; the kept ones
-  double done = 0.0;
+  RefinementProgress progress(options);
   for (int run = 0; run < 5; ++run)
   {
     cdt = std::make_unique<CDT>();
@@ -1013,14 +1042,8 @@ void sampleSupport(
     }
     insertLoops(*cdt, boundary);
     ++result.refinementRuns;
-    const double share = runTarget / (target * 2.2);
-    const bool finished = refineSupport(*cdt, field, options, epsilon, result.capped,
-      [&](long long count)
-      {
-        return !options.progress ||
-          options.progress(std::min(0.9, done + 0.9 * share * count / runTarget));
-      });
-    done = std::min(0.9, done + 0.9 * share);
+    const bool finished = refineSupport(
+      *cdt, field, options, epsilon, result.capped, progress.ofRun(runTarget, target));
     if (!finished)
     {
       result.status.aborted = true;
@@ -1186,21 +1209,14 @@ void sampleConvex(
   const double target = static_cast<double>(options.numberOfSamples);
   double runTarget = target >= 4000.0 ? target / 4.0 : target;
   double epsilon = std::sqrt(integral / runTarget);
-  double done = 0.0;
+  RefinementProgress progress(options);
   std::unique_ptr<Refinement> refinement;
   std::unordered_set<const void*> drop; // boundary samples dropped from the last run
   for (int run = 0; run < 5; ++run)
   {
     refinement = std::make_unique<Refinement>(field, options, epsilon);
     ++result.refinementRuns;
-    const double share = runTarget / (target * 2.2); // rough share of the total work
-    const bool finished = refinement->run(
-      [&](long long count)
-      {
-        return !options.progress ||
-          options.progress(std::min(0.9, done + 0.9 * share * count / runTarget));
-      });
-    done = std::min(0.9, done + 0.9 * share);
+    const bool finished = refinement->run(progress.ofRun(runTarget, target));
     if (!finished)
     {
       result.status.aborted = true;
