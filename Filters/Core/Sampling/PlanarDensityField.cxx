@@ -42,24 +42,12 @@ Vec2 closestOnSegment(Vec2 x, Vec2 a, Vec2 b)
 }
 } // namespace
 
-std::unique_ptr<DensityField> DensityField::create(const std::vector<Vec2>& points,
-  const std::vector<Triangle>& triangles, const std::vector<double>& perPoint,
-  const std::vector<double>& perTriangle, std::string& error)
+namespace
 {
-  error.clear();
+// What is wrong with the density values, or "".
+std::string checkValues(const std::vector<double>& perPoint, const std::vector<double>& perTriangle)
+{
   std::ostringstream msg;
-  if (points.empty() || triangles.empty())
-  {
-    error = "the domain has no triangles";
-    return nullptr;
-  }
-  if (perPoint.empty() == perTriangle.empty() ||
-    (!perPoint.empty() && perPoint.size() != points.size()) ||
-    (!perTriangle.empty() && perTriangle.size() != triangles.size()))
-  {
-    error = "the density needs exactly one value per point or one value per triangle";
-    return nullptr;
-  }
   const std::vector<double>& values = perPoint.empty() ? perTriangle : perPoint;
   const char* where = perPoint.empty() ? "triangle" : "point";
   std::vector<size_t> bad;
@@ -76,39 +64,86 @@ std::unique_ptr<DensityField> DensityField::create(const std::vector<Vec2>& poin
   {
     msg << "the density must be finite and non-negative, but it is " << values[bad.front()]
         << " at " << where << " id(s) " << idList(bad);
-    error = msg.str();
-    return nullptr;
+    return msg.str();
   }
   if (!anyPositive)
   {
-    error = "the density is zero everywhere";
+    return "the density is zero everywhere";
+  }
+  return {};
+}
+} // namespace
+
+std::unique_ptr<DensityField> DensityField::create(const std::vector<Vec2>& points,
+  const std::vector<Triangle>& triangles, const std::vector<double>& perPoint,
+  const std::vector<double>& perTriangle, std::string& error)
+{
+  error.clear();
+  if (points.empty() || triangles.empty())
+  {
+    error = "the domain has no triangles";
     return nullptr;
   }
-
+  if (perPoint.empty() == perTriangle.empty() ||
+    (!perPoint.empty() && perPoint.size() != points.size()) ||
+    (!perTriangle.empty() && perTriangle.size() != triangles.size()))
+  {
+    error = "the density needs exactly one value per point or one value per triangle";
+    return nullptr;
+  }
+  error = checkValues(perPoint, perTriangle);
+  if (!error.empty())
+  {
+    return nullptr;
+  }
   std::unique_ptr<DensityField> field(new DensityField());
   field->Points = points;
   field->Triangles = triangles;
   field->PerPoint = perPoint;
   field->PerTriangle = perTriangle;
-  std::vector<char> used(points.size(), 0);
-  for (size_t t = 0; t < triangles.size(); ++t)
+  error = field->orientAndIntegrate();
+  if (error.empty())
   {
-    Triangle& tri = field->Triangles[t];
+    field->keepSupport();
+    error = field->checkNoOverlap();
+  }
+  if (error.empty() && !(field->Integral > 0.0))
+  {
+    error = "the density integrates to zero over the domain";
+  }
+  if (error.empty())
+  {
+    error = field->findShape();
+  }
+  if (!error.empty())
+  {
+    return nullptr;
+  }
+  field->buildSearchTrees();
+  return field;
+}
+
+// Every triangle counter-clockwise, checked (ids, finite points, positive area); the integral
+// of the density over all of them.
+std::string DensityField::orientAndIntegrate()
+{
+  const std::vector<Vec2>& points = this->Points;
+  std::ostringstream msg;
+  for (size_t t = 0; t < this->Triangles.size(); ++t)
+  {
+    Triangle& tri = this->Triangles[t];
     for (int v : tri)
     {
       if (v < 0 || static_cast<size_t>(v) >= points.size())
       {
         msg << "triangle " << t << " uses point id " << v << ", which does not exist";
-        error = msg.str();
-        return nullptr;
+        return msg.str();
       }
       if (!std::isfinite(points[v].x) || !std::isfinite(points[v].y))
       {
         msg << "point " << v << " has a NaN or infinite coordinate";
-        error = msg.str();
-        return nullptr;
+        return msg.str();
       }
-      used[v] = 1;
     }
     double twice = cross(points[tri[1]] - points[tri[0]], points[tri[2]] - points[tri[0]]);
     if (twice < 0.0)
@@ -119,82 +154,101 @@ std::unique_ptr<DensityField> DensityField::create(const std::vector<Vec2>& poin
     if (!(twice > 0.0))
     {
       msg << "triangle " << t << " has zero area";
-      error = msg.str();
-      return nullptr;
+      return msg.str();
     }
     const double area = 0.5 * twice;
-    field->Integral += perPoint.empty()
-      ? area * perTriangle[t]
-      : area * (perPoint[tri[0]] + perPoint[tri[1]] + perPoint[tri[2]]) / 3.0;
+    this->Integral += this->PerPoint.empty()
+      ? area * this->PerTriangle[t]
+      : area * (this->PerPoint[tri[0]] + this->PerPoint[tri[1]] + this->PerPoint[tri[2]]) / 3.0;
   }
-  // The domain is the density's support: triangles where it vanishes identically are left out,
-  // so that a density that is zero on parts of the input gives a domain with holes or several
-  // components, sampled (boundaries included) only where there is mass.
-  {
-    std::vector<Triangle> support;
-    std::vector<double> supportValues;
-    for (size_t t = 0; t < field->Triangles.size(); ++t)
-    {
-      const Triangle& tri = field->Triangles[t];
-      const bool zero = perPoint.empty()
-        ? perTriangle[t] == 0.0
-        : perPoint[tri[0]] == 0.0 && perPoint[tri[1]] == 0.0 && perPoint[tri[2]] == 0.0;
-      if (!zero)
-      {
-        support.push_back(tri);
-        if (!perTriangle.empty())
-        {
-          supportValues.push_back(perTriangle[t]);
-        }
-      }
-    }
-    field->Triangles = std::move(support);
-    if (!perTriangle.empty())
-    {
-      field->PerTriangle = std::move(supportValues);
-    }
-    std::fill(used.begin(), used.end(), 0);
-    for (const Triangle& tri : field->Triangles)
-    {
-      for (int v : tri)
-      {
-        used[v] = 1;
-      }
-      field->Area += 0.5 * cross(points[tri[1]] - points[tri[0]], points[tri[2]] - points[tri[0]]);
-    }
-  }
-  // Once every triangle is counter-clockwise, a tiling uses each directed edge at most once: a
-  // repeated one means overlapping triangles (which the area check below could miss when a
-  // hole has the same area).
-  {
-    std::vector<std::pair<std::pair<int, int>, size_t>> directed;
-    for (size_t t = 0; t < field->Triangles.size(); ++t)
-    {
-      const Triangle& tri = field->Triangles[t];
-      for (int k = 0; k < 3; ++k)
-      {
-        directed.push_back({ { tri[k], tri[(k + 1) % 3] }, t });
-      }
-    }
-    std::sort(directed.begin(), directed.end());
-    for (size_t e = 1; e < directed.size(); ++e)
-    {
-      if (directed[e].first == directed[e - 1].first)
-      {
-        msg << "triangles " << directed[e - 1].second << " and " << directed[e].second
-            << " overlap (both have the edge from point " << directed[e].first.first << " to point "
-            << directed[e].first.second << " on the same side)";
-        error = msg.str();
-        return nullptr;
-      }
-    }
-  }
-  if (!(field->Integral > 0.0))
-  {
-    error = "the density integrates to zero over the domain";
-    return nullptr;
-  }
+  return {};
+}
 
+// The domain is the density's support: triangles where it vanishes identically are left out,
+// so that a density that is zero on parts of the input gives a domain with holes or several
+// components, sampled (boundaries included) only where there is mass.
+void DensityField::keepSupport()
+{
+  const std::vector<Vec2>& points = this->Points;
+  const std::vector<double> perPoint = this->PerPoint, perTriangle = this->PerTriangle;
+  std::vector<Triangle> support;
+  std::vector<double> supportValues;
+  for (size_t t = 0; t < this->Triangles.size(); ++t)
+  {
+    const Triangle& tri = this->Triangles[t];
+    const bool zero = perPoint.empty()
+      ? perTriangle[t] == 0.0
+      : perPoint[tri[0]] == 0.0 && perPoint[tri[1]] == 0.0 && perPoint[tri[2]] == 0.0;
+    if (!zero)
+    {
+      support.push_back(tri);
+      if (!perTriangle.empty())
+      {
+        supportValues.push_back(perTriangle[t]);
+      }
+    }
+  }
+  this->Triangles = std::move(support);
+  if (!perTriangle.empty())
+  {
+    this->PerTriangle = std::move(supportValues);
+  }
+  for (const Triangle& tri : this->Triangles)
+  {
+    this->Area += 0.5 * cross(points[tri[1]] - points[tri[0]], points[tri[2]] - points[tri[0]]);
+  }
+}
+
+// Once every triangle is counter-clockwise, a tiling uses each directed edge at most once: a
+// repeated one means overlapping triangles (which the area check below could miss when a hole
+// has the same area).
+std::string DensityField::checkNoOverlap() const
+{
+  std::vector<std::pair<std::pair<int, int>, size_t>> directed;
+  for (size_t t = 0; t < this->Triangles.size(); ++t)
+  {
+    const Triangle& tri = this->Triangles[t];
+    for (int k = 0; k < 3; ++k)
+    {
+      directed.push_back({ { tri[k], tri[(k + 1) % 3] }, t });
+    }
+  }
+  std::sort(directed.begin(), directed.end());
+  for (size_t e = 1; e < directed.size(); ++e)
+  {
+    if (directed[e].first == directed[e - 1].first)
+    {
+      std::ostringstream msg;
+      msg << "triangles " << directed[e - 1].second << " and " << directed[e].second
+          << " overlap (both have the edge from point " << directed[e].first.first << " to point "
+          << directed[e].first.second << " on the same side)";
+      return msg.str();
+    }
+  }
+  return {};
+}
+
+// The points the support uses.
+std::vector<char> DensityField::usedPoints() const
+{
+  std::vector<char> used(this->Points.size(), 0);
+  for (const Triangle& tri : this->Triangles)
+  {
+    for (int v : tri)
+    {
+      used[v] = 1;
+    }
+  }
+  return used;
+}
+
+// The convex hull, whether the support tiles it (convex), its boundary loops otherwise, and
+// whether it is the unit disk.
+std::string DensityField::findShape()
+{
+  const std::vector<Vec2>& points = this->Points;
+  const std::vector<char> used = this->usedPoints();
+  std::string error;
   using K = CGAL::Exact_predicates_inexact_constructions_kernel;
   using Traits =
     CGAL::Convex_hull_traits_adapter_2<K, CGAL::Pointer_property_map<K::Point_2>::type>;
@@ -214,33 +268,40 @@ std::unique_ptr<DensityField> DensityField::create(const std::vector<Vec2>& poin
   for (size_t k = 0; k < hull.size(); ++k)
   {
     const Vec2 a = points[hull[k]], b = points[hull[(k + 1) % hull.size()]];
-    field->Hull.push_back(a);
-    field->HullIds.push_back(static_cast<int>(hull[k]));
+    this->Hull.push_back(a);
+    this->HullIds.push_back(static_cast<int>(hull[k]));
     hullArea += 0.5 * cross(a, b);
   }
   // Triangles that tile their convex hull exactly make a convex domain; anything else has holes,
   // several components or concavities, and its boundary is made of the loops of edges that
   // belong to one triangle only.
-  field->Convex = std::abs(hullArea - field->Area) <= 1e-9 * hullArea;
-  if (field->Convex)
+  this->Convex = std::abs(hullArea - this->Area) <= 1e-9 * hullArea;
+  if (this->Convex)
   {
-    field->Loops = { field->Hull };
+    this->Loops = { this->Hull };
   }
-  else if (!field->traceBoundaryLoops(error))
+  else if (!this->traceBoundaryLoops(error))
   {
-    return nullptr;
+    return error;
   }
-  field->UnitDisk = field->Convex;
-  for (const Vec2& p : field->Hull)
+  this->UnitDisk = this->Convex;
+  for (const Vec2& p : this->Hull)
   {
     // 1e-6: a disk whose points were stored in single precision (VTK's default) is still one.
-    field->UnitDisk = field->UnitDisk && std::abs(norm(p) - 1.0) <= 1e-6;
+    this->UnitDisk = this->UnitDisk && std::abs(norm(p) - 1.0) <= 1e-6;
   }
+  return {};
+}
 
-  std::vector<BoxTree::Item> triangleBoxes(field->Triangles.size());
-  for (size_t t = 0; t < field->Triangles.size(); ++t)
+// Box trees over the triangles and, for a density per point, over the used points.
+void DensityField::buildSearchTrees()
+{
+  const std::vector<Vec2>& points = this->Points;
+  const std::vector<char> used = this->usedPoints();
+  std::vector<BoxTree::Item> triangleBoxes(this->Triangles.size());
+  for (size_t t = 0; t < this->Triangles.size(); ++t)
   {
-    const Triangle& tri = field->Triangles[t];
+    const Triangle& tri = this->Triangles[t];
     BoxTree::Item& box = triangleBoxes[t];
     box.lo = box.hi = points[tri[0]];
     for (int v : tri)
@@ -248,24 +309,23 @@ std::unique_ptr<DensityField> DensityField::create(const std::vector<Vec2>& poin
       box.lo = { std::min(box.lo.x, points[v].x), std::min(box.lo.y, points[v].y) };
       box.hi = { std::max(box.hi.x, points[v].x), std::max(box.hi.y, points[v].y) };
     }
-    box.value = field->PerTriangle.empty() ? 0.0 : field->PerTriangle[t];
+    box.value = this->PerTriangle.empty() ? 0.0 : this->PerTriangle[t];
   }
-  field->TriangleTree = BoxTree(std::move(triangleBoxes));
-  if (field->PerTriangle.empty())
+  this->TriangleTree = BoxTree(std::move(triangleBoxes));
+  if (this->PerTriangle.empty())
   {
     std::vector<BoxTree::Item> pointBoxes;
-    field->PointTreeIds.clear();
+    this->PointTreeIds.clear();
     for (size_t i = 0; i < points.size(); ++i)
     {
       if (used[i])
       {
-        pointBoxes.push_back({ points[i], points[i], field->PerPoint[i] });
-        field->PointTreeIds.push_back(static_cast<int>(i));
+        pointBoxes.push_back({ points[i], points[i], this->PerPoint[i] });
+        this->PointTreeIds.push_back(static_cast<int>(i));
       }
     }
-    field->PointTree = BoxTree(std::move(pointBoxes));
+    this->PointTree = BoxTree(std::move(pointBoxes));
   }
-  return field;
 }
 
 int DensityField::locate(Vec2 x) const

@@ -66,6 +66,13 @@ private:
   DensityField() = default;
   int locate(Vec2 x) const; // triangle containing x, or -1
   bool traceBoundaryLoops(std::string& error);
+  // The steps of create(), each "" or its message.
+  std::string orientAndIntegrate();
+  void keepSupport();
+  std::string checkNoOverlap() const;
+  std::vector<char> usedPoints() const;
+  std::string findShape();
+  void buildSearchTrees();
 
   std::vector<Vec2> Points;
   std::vector<Triangle> Triangles; // counter-clockwise
