@@ -969,12 +969,103 @@ Candidate finishSupportCandidate(const DensityField& field, const SamplerOptions
 // The whole sampling of a non-convex domain: boundary samples along every loop spaced by
 // nu-length eps, graded refinement with eps calibrated to the target count, every other
 // boundary sample dropped, Lloyd steps, masses. Fills result like sampleDensity does.
+// Samples along one boundary loop: from corner to corner (from point 0 round the whole loop
+// when it has none), spaced evenly in nu-length along the polyline.
+std::vector<Vec2> sampleLoop(
+  const std::vector<Vec2>& loop, const std::function<double(Vec2)>& grading, double epsilon)
+{
+  const size_t n = loop.size();
+  const std::vector<char> corner = loopCorners(loop);
+  size_t first = 0;
+  while (first < n && !corner[first])
+  {
+    ++first;
+  }
+  first = first == n ? 0 : first;
+  std::vector<Vec2> samples;
+  for (size_t piece = first, walked = 0; walked < n;)
+  {
+    std::vector<Vec2> path{ loop[piece] };
+    std::vector<double> cumulative{ 0.0 };
+    size_t k = piece;
+    do
+    {
+      const Vec2 a = loop[k], b = loop[(k + 1) % n];
+      const int fine = 16;
+      for (int q = 0; q < fine; ++q)
+      {
+        const Vec2 from = a + (static_cast<double>(q) / fine) * (b - a);
+        const Vec2 to = a + (static_cast<double>(q + 1) / fine) * (b - a);
+        cumulative.push_back(cumulative.back() + grading(0.5 * (from + to)) * norm(to - from));
+        path.push_back(to);
+      }
+      k = (k + 1) % n;
+      ++walked;
+    } while (k != first && !corner[k]);
+    const int count = std::max(1, static_cast<int>(std::ceil(cumulative.back() / epsilon)));
+    for (int q = 0; q < count; ++q)
+    {
+      const double at = cumulative.back() * q / count;
+      const size_t j =
+        static_cast<size_t>(
+          std::upper_bound(cumulative.begin(), cumulative.end(), at) - cumulative.begin()) -
+        1;
+      const double step = cumulative[j + 1] - cumulative[j];
+      const double within = step > 0.0 ? (at - cumulative[j]) / step : 0.0;
+      samples.push_back(q == 0 ? path[0] : path[j] + within * (path[j + 1] - path[j]));
+    }
+    piece = k;
+  }
+  return samples;
+}
+
+// Vertices of the faces inside the domain.
+std::size_t verticesInDomain(const CDT& cdt)
+{
+  std::unordered_set<const void*> seen;
+  for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f)
+  {
+    for (int k = 0; f->is_in_domain() && k < 3; ++k)
+    {
+      seen.insert(&*f->vertex(k));
+    }
+  }
+  return seen.size();
+}
+
+// Interior samples: vertices of domain faces that are not on a boundary loop.
+std::vector<Vec2> interiorSamples(const CDT& cdt, const std::vector<std::vector<Vec2>>& loops)
+{
+  std::set<std::pair<double, double>> onLoop;
+  for (const auto& loop : loops)
+  {
+    for (const Vec2& v : loop)
+    {
+      onLoop.insert({ v.x, v.y });
+    }
+  }
+  std::vector<Vec2> interior;
+  std::unordered_set<const void*> seen;
+  for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f)
+  {
+    for (int k = 0; f->is_in_domain() && k < 3; ++k)
+    {
+      const Point& p = f->vertex(k)->point();
+      if (seen.insert(&*f->vertex(k)).second && !onLoop.count({ p.x(), p.y() }))
+      {
+        interior.push_back(toVec(p));
+      }
+    }
+  }
+  return interior;
+}
+
 void sampleSupport(
   const DensityField& field, const SamplerOptions& options, double integral, SamplerResult& result)
 {
   const double target = static_cast<double>(options.numberOfSamples);
   const bool graded = options.mode == SamplingMode::Adaptive;
-  auto grading = [&](Vec2 x)
+  const std::function<double(Vec2)> grading = [&](Vec2 x)
   {
     if (!graded)
     {
@@ -994,51 +1085,7 @@ void sampleSupport(
     std::vector<std::vector<Vec2>> boundary;
     for (const auto& loop : field.boundaryLoops())
     {
-      // From corner to corner (from point 0 round the whole loop when it has none), samples
-      // spaced evenly in nu-length along the polyline.
-      const size_t n = loop.size();
-      const std::vector<char> corner = loopCorners(loop);
-      size_t first = 0;
-      while (first < n && !corner[first])
-      {
-        ++first;
-      }
-      first = first == n ? 0 : first;
-      std::vector<Vec2> samples;
-      for (size_t piece = first, walked = 0; walked < n;)
-      {
-        std::vector<Vec2> path{ loop[piece] };
-        std::vector<double> cumulative{ 0.0 };
-        size_t k = piece;
-        do
-        {
-          const Vec2 a = loop[k], b = loop[(k + 1) % n];
-          const int fine = 16;
-          for (int q = 0; q < fine; ++q)
-          {
-            const Vec2 from = a + (static_cast<double>(q) / fine) * (b - a);
-            const Vec2 to = a + (static_cast<double>(q + 1) / fine) * (b - a);
-            cumulative.push_back(cumulative.back() + grading(0.5 * (from + to)) * norm(to - from));
-            path.push_back(to);
-          }
-          k = (k + 1) % n;
-          ++walked;
-        } while (k != first && !corner[k]);
-        const int count = std::max(1, static_cast<int>(std::ceil(cumulative.back() / epsilon)));
-        for (int q = 0; q < count; ++q)
-        {
-          const double at = cumulative.back() * q / count;
-          const size_t j =
-            static_cast<size_t>(
-              std::upper_bound(cumulative.begin(), cumulative.end(), at) - cumulative.begin()) -
-            1;
-          const double step = cumulative[j + 1] - cumulative[j];
-          const double within = step > 0.0 ? (at - cumulative[j]) / step : 0.0;
-          samples.push_back(q == 0 ? path[0] : path[j] + within * (path[j + 1] - path[j]));
-        }
-        piece = k;
-      }
-      boundary.push_back(std::move(samples));
+      boundary.push_back(sampleLoop(loop, grading, epsilon));
     }
     insertLoops(*cdt, boundary);
     ++result.refinementRuns;
@@ -1060,19 +1107,7 @@ void sampleSupport(
     {
       dropped -= loop.size();
     }
-    std::size_t inDomain = 0;
-    {
-      std::unordered_set<const void*> seen;
-      for (auto f = cdt->finite_faces_begin(); f != cdt->finite_faces_end(); ++f)
-      {
-        for (int k = 0; f->is_in_domain() && k < 3; ++k)
-        {
-          seen.insert(&*f->vertex(k));
-        }
-      }
-      inDomain = seen.size();
-    }
-    const double count = static_cast<double>(inDomain - dropped);
+    const double count = static_cast<double>(verticesInDomain(*cdt) - dropped);
     result.epsilon = epsilon;
     if (result.capped)
     {
@@ -1097,30 +1132,7 @@ void sampleSupport(
       v = field.nearestBoundaryPoint(v);
     }
   }
-  // Interior samples: vertices of domain faces that are not on a boundary loop.
-  std::set<std::pair<double, double>> onLoop;
-  for (const auto& loop : refinedLoops)
-  {
-    for (const Vec2& v : loop)
-    {
-      onLoop.insert({ v.x, v.y });
-    }
-  }
-  std::vector<Vec2> interior;
-  {
-    std::unordered_set<const void*> seen;
-    for (auto f = cdt->finite_faces_begin(); f != cdt->finite_faces_end(); ++f)
-    {
-      for (int k = 0; f->is_in_domain() && k < 3; ++k)
-      {
-        const Point& p = f->vertex(k)->point();
-        if (seen.insert(&*f->vertex(k)).second && !onLoop.count({ p.x(), p.y() }))
-        {
-          interior.push_back(toVec(p));
-        }
-      }
-    }
-  }
+  const std::vector<Vec2> interior = interiorSamples(*cdt, refinedLoops);
   std::string error;
   const auto source = field.makeSource(error);
   if (!source)
