@@ -1,7 +1,5 @@
 #include "vtkAreaPreservingParam.h"
 
-#include "vtkCellData.h"
-#include "vtkFieldData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkNew.h"
