@@ -337,14 +337,11 @@ private:
 };
 } // namespace
 
-bool coarseToFineHeights(const SourceMeasure& source, const std::vector<Vec2>& diracs,
-  const std::vector<double>& nu, std::vector<Height>& h)
+namespace
+{
+std::vector<int> coarseSubset(const std::vector<Vec2>& diracs)
 {
   const int n = static_cast<int>(diracs.size());
-  if (n < MultiscaleMinimumDiracs)
-  {
-    return false;
-  }
   // A random sixth (fixed seed: runs are reproducible) carries the masses of the Diracs
   // nearest to it: a sixth halves the coarse solve against a quarter and leaves the fine
   // iterations as they were; an eighth was no faster (docs/design.md).
@@ -372,25 +369,14 @@ bool coarseToFineHeights(const SourceMeasure& source, const std::vector<Vec2>& d
   }
   std::sort(ids.begin(), ids.end());
   ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
-  const int coarseCount = static_cast<int>(ids.size());
+  return ids;
+}
 
-  std::vector<std::pair<Delaunay::Point, int>> input;
-  input.reserve(coarseCount);
-  for (int c = 0; c < coarseCount; ++c)
-  {
-    input.emplace_back(Delaunay::Point(diracs[ids[c]].x, diracs[ids[c]].y), c);
-  }
-  Delaunay dt;
-  dt.insert(input.begin(), input.end());
-  if (dt.dimension() < 2 || static_cast<int>(dt.number_of_vertices()) != coarseCount)
-  {
-    return false;
-  }
-  std::vector<Vec2> coarseDiracs(coarseCount);
-  for (int c = 0; c < coarseCount; ++c)
-  {
-    coarseDiracs[c] = diracs[ids[c]];
-  }
+// The median Delaunay edge of the coarse Diracs (the stencil's scale), or 0 when their spacing
+// varies too much for one stencil.
+double coarseSpacing(const Delaunay& dt, const std::vector<Vec2>& coarseDiracs)
+{
+  const int coarseCount = static_cast<int>(coarseDiracs.size());
   // One radius for all: a radius that varies from place to place breaks the convexity (with each
   // coarse Dirac's mean Delaunay edge, interpolated, 61% of the fine Diracs were hidden).
   std::vector<double> edgeLengths;
@@ -410,11 +396,13 @@ bool coarseToFineHeights(const SourceMeasure& source, const std::vector<Vec2>& d
   const double medianEdge = edgeLengths[edgeLengths.size() / 2];
   const double spread =
     edgeLengths[9 * edgeLengths.size() / 10] / edgeLengths[edgeLengths.size() / 10];
-  if (!(spread <= MaximumSpacingSpread))
-  {
-    return false;
-  }
-  const std::vector<int> order = rowOrder(diracs);
+  return spread <= MaximumSpacingSpread ? medianEdge : 0.0;
+}
+
+// Each fine Dirac's mass goes to its nearest coarse Dirac (walked in row order).
+std::vector<double> coarseMasses(const Delaunay& dt, const std::vector<Vec2>& diracs,
+  const std::vector<double>& nu, const std::vector<int>& order, int coarseCount)
+{
   std::vector<double> coarseMass(coarseCount, 0.0);
   Delaunay::Vertex_handle nearest;
   for (const int i : order)
@@ -424,18 +412,13 @@ bool coarseToFineHeights(const SourceMeasure& source, const std::vector<Vec2>& d
       p, nearest == Delaunay::Vertex_handle() ? Delaunay::Face_handle() : nearest->face());
     coarseMass[nearest->info()] += nu[i];
   }
-  // The start needs the coarse cells' shape, not their last digits.
-  OTOptions coarseOptions;
-  coarseOptions.tolerance = 1e-3;
-  coarseOptions.maximumNumberOfIterations = 100;
-  coarseOptions.coarseToFineStart = true;
-  const OTResult coarse = solveSemiDiscreteOT(source, coarseDiracs, coarseMass, coarseOptions);
-  if (coarse.heights.size() != static_cast<size_t>(coarseCount) ||
-    *std::min_element(coarse.cellMass.begin(), coarse.cellMass.end()) <= 0.0)
-  {
-    return false;
-  }
+  return coarseMass;
+}
 
+void smoothedHeights(const DiskDualPotential& psi, const std::vector<Vec2>& diracs,
+  const std::vector<int>& order, double medianEdge, std::vector<Height>& h)
+{
+  const int n = static_cast<int>(diracs.size());
   // Fine heights: psi of the coarse solution, averaged over a small stencil around each fine
   // Dirac. The coarse psi is piecewise linear where the coarse cells lie inside the disk: at its
   // own values the fine Diracs would sit on the coarse lower hull with empty cells. A positive
@@ -450,11 +433,6 @@ bool coarseToFineHeights(const SourceMeasure& source, const std::vector<Vec2>& d
   // The stencil: its centre and two hexagons, of radii r / 2 and r, weights 1, 0.8, 0.4, with r
   // 1.3 median coarse Delaunay edges (fine iterations were flat from 1 to 2 coarse spacings).
   // The small share of |y|^2 / 2 (the Voronoi diagram) is curvature everywhere.
-  DiskDualPotential psi;
-  if (!psi.build(coarseDiracs, coarse.heights))
-  {
-    return false;
-  }
   std::vector<std::pair<Vec2, double>> stencil{ { Vec2{ 0.0, 0.0 }, 1.0 } };
   for (int k = 0; k < 6; ++k)
   {
@@ -488,6 +466,61 @@ bool coarseToFineHeights(const SourceMeasure& source, const std::vector<Vec2>& d
         VoronoiShare * 0.5L * static_cast<long double>(dot(y, y));
     }
   }
+}
+} // namespace
+
+bool coarseToFineHeights(const SourceMeasure& source, const std::vector<Vec2>& diracs,
+  const std::vector<double>& nu, std::vector<Height>& h)
+{
+  const int n = static_cast<int>(diracs.size());
+  if (n < MultiscaleMinimumDiracs)
+  {
+    return false;
+  }
+  const std::vector<int> ids = coarseSubset(diracs);
+  const int coarseCount = static_cast<int>(ids.size());
+  std::vector<std::pair<Delaunay::Point, int>> input;
+  input.reserve(coarseCount);
+  for (int c = 0; c < coarseCount; ++c)
+  {
+    input.emplace_back(Delaunay::Point(diracs[ids[c]].x, diracs[ids[c]].y), c);
+  }
+  Delaunay dt;
+  dt.insert(input.begin(), input.end());
+  if (dt.dimension() < 2 || static_cast<int>(dt.number_of_vertices()) != coarseCount)
+  {
+    return false;
+  }
+  std::vector<Vec2> coarseDiracs(coarseCount);
+  for (int c = 0; c < coarseCount; ++c)
+  {
+    coarseDiracs[c] = diracs[ids[c]];
+  }
+  const double medianEdge = coarseSpacing(dt, coarseDiracs);
+  if (!(medianEdge > 0.0))
+  {
+    return false;
+  }
+  const std::vector<int> order = rowOrder(diracs);
+  const std::vector<double> coarseMass = coarseMasses(dt, diracs, nu, order, coarseCount);
+  // The start needs the coarse cells' shape, not their last digits.
+  OTOptions coarseOptions;
+  coarseOptions.tolerance = 1e-3;
+  coarseOptions.maximumNumberOfIterations = 100;
+  coarseOptions.coarseToFineStart = true;
+  const OTResult coarse = solveSemiDiscreteOT(source, coarseDiracs, coarseMass, coarseOptions);
+  if (coarse.heights.size() != static_cast<size_t>(coarseCount) ||
+    *std::min_element(coarse.cellMass.begin(), coarse.cellMass.end()) <= 0.0)
+  {
+    return false;
+  }
+
+  DiskDualPotential psi;
+  if (!psi.build(coarseDiracs, coarse.heights))
+  {
+    return false;
+  }
+  smoothedHeights(psi, diracs, order, medianEdge, h);
   return true;
 }
 
