@@ -31,6 +31,7 @@ otparam::AreaPreservingOptions MakeOptions(vtkAreaPreservingParam* self)
   options.transport.maximumNumberOfIterations = self->GetMaximumNumberOfIterations();
   options.conformal.centerPointId = self->GetCenterPointId();
   options.conformal.alignPointId = self->GetAlignPointId();
+  options.conformal.fillHoles = self->GetFillHoles();
   options.composition.correctAreas =
     self->GetAreaCorrection() && self->GetMaximumCorrectionSweeps() > 0;
   options.composition.maximumCorrectionSweeps = self->GetMaximumCorrectionSweeps();
@@ -94,6 +95,8 @@ void WriteFigures(const otparam::AreaPreservingResult& run, vtkDataObject* figur
 {
   const otparam::OTResult& transport = run.transport.result;
   AddIntScalar(figures, "Iterations", transport.iterations);
+  AddIntScalar(figures, "FilledHoles", run.conformal.filledHoles);
+  AddScalar(figures, "FillAreaFraction", run.conformal.fillAreaFraction);
   AddScalar(figures, "RelativeError", transport.relativeError);
   AddIntScalar(figures, "Converged", transport.converged ? 1 : 0);
   AddIntScalar(figures, "NumberOfSamples", static_cast<long long>(run.diracs.size()));
@@ -202,6 +205,7 @@ void vtkAreaPreservingParam::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaximumNumberOfIterations: " << this->MaximumNumberOfIterations << "\n";
   os << indent << "CenterPointId: " << this->CenterPointId << "\n";
   os << indent << "AlignPointId: " << this->AlignPointId << "\n";
+  os << indent << "FillHoles: " << this->FillHoles << "\n";
   os << indent << "AreaCorrection: " << this->AreaCorrection << "\n";
   os << indent << "MaximumCorrectionSweeps: " << this->MaximumCorrectionSweeps << "\n";
   os << indent << "NumberOfHistogramBins: " << this->NumberOfHistogramBins << "\n";

@@ -28,7 +28,9 @@
  * conformal map prefixed `Conformal` (e.g. `ConformalMeanAbsLogAreaRatio`), `DroppedSamples`
  * (samples whose cell integrated to 0, left out of the transport), the composition's
  * `InterpolatedMeanAbsLogAreaRatio`, `InterpolatedFlippedTriangles`, `UntangledVertices`,
- * `CorrectionSweeps`, and `SecondsConformalMap`, `SecondsSampling`, `SecondsTransport`,
+ * `CorrectionSweeps`, `FilledHoles` and `FillAreaFraction` (see FillHoles: the holes closed
+ * for the computation and the fill's share of the surface area, hence of the disk; the other
+ * figures are those of the input's own triangles), and `SecondsConformalMap`, `SecondsSampling`, `SecondsTransport`,
  * `SecondsComposition`, `SecondsTotal`.
  *
  * Output port 1: the flattened area-preserving disk mesh: points (u, v, 0), the same triangles
@@ -111,6 +113,19 @@ public:
 
   ///@{
   /**
+   * A genus-0 surface with several boundary loops (a scan with holes): on (default), the
+   * longest loop (by surface length) becomes the disk's boundary and the others are closed
+   * for the computation with CGAL's hole filling (triangulate, refine, fair); the fill is
+   * dropped from the outputs, which have exactly the input's referenced points and
+   * triangles. Off: such a surface is refused.
+   */
+  vtkSetMacro(FillHoles, bool);
+  vtkGetMacro(FillHoles, bool);
+  vtkBooleanMacro(FillHoles, bool);
+  ///@}
+
+  ///@{
+  /**
    * Move vertices after the interpolation so that every triangle gets its surface area
    * fraction (see the class description). Default on.
    */
@@ -151,6 +166,7 @@ protected:
   int MaximumNumberOfIterations;
   vtkIdType CenterPointId = -1;
   vtkIdType AlignPointId = -1;
+  bool FillHoles = true;
   bool AreaCorrection;
   int MaximumCorrectionSweeps;
   int NumberOfHistogramBins = 50;

@@ -49,6 +49,7 @@ int vtkConformalDiskMap::Execute(
   otparam::ConformalStageOptions options;
   options.centerPointId = this->CenterPointId;
   options.alignPointId = this->AlignPointId;
+  options.fillHoles = this->FillHoles;
   options.map.tolerance = this->Tolerance;
   options.map.maximumNumberOfIterations = this->MaximumNumberOfIterations;
   options.map.progress = this->ProgressCallback();
@@ -64,11 +65,14 @@ int vtkConformalDiskMap::Execute(
     vtkErrorMacro(<< error);
     return 0;
   }
-  const otparam::ConformalStage stage = otparam::runConformalStage(soup, options);
+  otparam::ConformalStage stage = otparam::runConformalStage(soup, options);
   if (!this->ReportStatus(stage.status))
   {
     return 0;
   }
+  // The automatic centre may be a point of a hole fill: its id is then -1.
+  const std::int64_t centerPointId = stage.inputId(stage.map.centerVertex);
+  otparam::keepInputPart(stage);
 
   const otparam::CompactedMesh& surface = stage.surface;
   const auto n = static_cast<vtkIdType>(surface.mesh.points.size());
@@ -97,8 +101,10 @@ int vtkConformalDiskMap::Execute(
   AddIntScalar(output, "ClippedEars", map.clippedEars);
   AddIntScalar(output, "FoldedWithMeshLaplacian", map.foldedWithMeshLaplacian);
   AddIntScalar(output, "IntrinsicLaplacian", map.intrinsicLaplacian ? 1 : 0);
-  AddIdScalar(output, "CenterPointId", surface.originalPointIds[map.centerVertex]);
-  AddIdScalar(output, "AlignPointId", surface.originalPointIds[map.alignVertex]);
+  AddIdScalar(output, "CenterPointId", centerPointId);
+  AddIdScalar(output, "AlignPointId", stage.inputId(map.alignVertex));
+  AddIntScalar(output, "FilledHoles", stage.filledHoles);
+  AddScalar(output, "FillAreaFraction", stage.fillAreaFraction);
   AddScalar(output, "SecondsFactorization", map.secondsFactorization);
   AddScalar(output, "SecondsIterations", map.secondsIterations);
   AddScalar(output, "SecondsTotal", Seconds(startTotal));
@@ -111,6 +117,7 @@ void vtkConformalDiskMap::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "CenterPointId: " << this->CenterPointId << "\n";
   os << indent << "AlignPointId: " << this->AlignPointId << "\n";
+  os << indent << "FillHoles: " << this->FillHoles << "\n";
   os << indent << "Tolerance: " << this->Tolerance << "\n";
   os << indent << "MaximumNumberOfIterations: " << this->MaximumNumberOfIterations << "\n";
 }

@@ -31,11 +31,12 @@
  * Laplacian folds triangles, which its negative weights across obtuse triangles allow, the
  * map is computed again with the Laplacian of the intrinsic Delaunay triangulation, which
  * cannot fold, and kept if it folds fewer), `CenterPointId`, `AlignPointId` (input point ids
- * actually used), `SecondsFactorization`, `SecondsIterations`, `SecondsTotal`.
+ * actually used; -1 when the automatic centre is a point of a hole fill), `FilledHoles`,
+ * `FillAreaFraction` (see FillHoles), `SecondsFactorization`, `SecondsIterations`, `SecondsTotal`.
  *
  * Bad input (no triangles, non-triangle cells, NaN coordinates, zero-area triangles,
- * non-manifold edges or vertices, inconsistent orientation, several components, no or several
- * boundary loops, genus > 0, CenterPointId / AlignPointId out of range or on the wrong side of
+ * non-manifold edges or vertices, inconsistent orientation, several components, no boundary
+ * loop, several with FillHoles off, genus > 0, CenterPointId / AlignPointId out of range or on the wrong side of
  * the boundary, absurd Tolerance or MaximumNumberOfIterations) is reported with vtkErrorMacro
  * naming the problem and where; the output is then empty and the input untouched. Progress
  * is reported and AbortExecute honoured.
@@ -75,6 +76,19 @@ public:
 
   ///@{
   /**
+   * A genus-0 surface with several boundary loops (a scan with holes): on (default), the
+   * longest loop (by surface length) becomes the disk's boundary and the others are closed
+   * for the computation with CGAL's hole filling (triangulate, refine, fair); the fill is
+   * dropped from the outputs, which have exactly the input's referenced points and
+   * triangles. Off: such a surface is refused.
+   */
+  vtkSetMacro(FillHoles, bool);
+  vtkGetMacro(FillHoles, bool);
+  vtkBooleanMacro(FillHoles, bool);
+  ///@}
+
+  ///@{
+  /**
    * The iteration on the boundary angles stops when no angle moves by more than Tolerance
    * radians. Must be positive. Default 1e-6.
    */
@@ -100,6 +114,7 @@ protected:
 
   vtkIdType CenterPointId = -1;
   vtkIdType AlignPointId = -1;
+  bool FillHoles = true;
   // The core's ConformalDiskMapOptions defaults, set by the constructor.
   double Tolerance;
   int MaximumNumberOfIterations;

@@ -284,6 +284,29 @@ check(table.IsA("vtkTable") and table.GetNumberOfRows() == 50
       and table.GetColumnByName("AreaPreservingLogAreaRatio") is not None,
       "port 2: the histogram table")
 
+# ---- A real scan with holes (the shared bunny: 4 holes besides the opening at its base)
+# through Area-Preserving Parameterization with default properties.
+if os.environ.get("OTPARAM_SHARED_DATA_DIR"):
+    bunny_reader = OpenDataFile(os.path.join(os.environ["OTPARAM_SHARED_DATA_DIR"], "meshes",
+                                             "bunny_holes_35k.obj"))
+    bunny = AreaPreservingParameterization(Input=bunny_reader)
+    check(bunny.FillHoles == 1, "FillHoles is on by default")
+    bunny.UpdatePipeline()
+    mapped = servermanager.Fetch(bunny, idx=0)
+    read = servermanager.Fetch(bunny_reader)
+    bfd = mapped.GetFieldData()
+    figure = {name: bfd.GetArray(name).GetValue(0) if bfd.GetArray(name) else None
+              for name in ("FilledHoles", "Converged", "FlippedTriangles", "MeanAbsLogAreaRatio")}
+    print(f"bunny_holes_35k.obj: {figure}", flush=True)
+    check(mapped.GetNumberOfPoints() == read.GetNumberOfPoints()
+          and mapped.GetNumberOfCells() == read.GetNumberOfCells(),
+          "bunny: the output has the input's points and triangles")
+    check(figure["FilledHoles"] == 4 and figure["Converged"] == 1
+          and figure["FlippedTriangles"] == 0 and figure["MeanAbsLogAreaRatio"] <= 0.03,
+          f"bunny: 4 holes filled, converged, no flip, area-preserving ({figure})")
+    Delete(bunny)
+    Delete(bunny_reader)
+
 # ---- Bad input in a ParaView pipeline: a closed surface. The filter's error reaches the
 # output window (ParaView's Output Messages), the outputs stay empty, and the same filter
 # works once it gets a disk-like surface.

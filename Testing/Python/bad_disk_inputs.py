@@ -134,7 +134,7 @@ def annulus(segments=12, radii=(0.5, 0.75, 1.0)):
     return mesh(points, triangles)
 
 
-def torus_with_hole(nu=8, nv=6, big=2.0, small=0.7):
+def torus_with_hole(nu=8, nv=6, big=2.0, small=0.7, holes=1):
     points = []
     for i in range(nu):
         for j in range(nv):
@@ -147,7 +147,9 @@ def torus_with_hole(nu=8, nv=6, big=2.0, small=0.7):
             a, b = i * nv + j, ((i + 1) % nu) * nv + j
             c, d = ((i + 1) % nu) * nv + (j + 1) % nv, i * nv + (j + 1) % nv
             triangles += [(a, b, c), (a, c, d)]
-    del triangles[0:2]  # one square removed: one boundary loop
+    # One square removed per hole: one boundary loop each (the second hole half way round).
+    removed = [0, 2 * ((nu // 2) * nv + nv // 2)][:holes]
+    triangles = [t for k, t in enumerate(triangles) if not any(k in (r, r + 1) for r in removed)]
     return mesh(points, triangles)
 
 
@@ -195,7 +197,8 @@ SURFACE_CASES = [
     ("no points", vtkPolyData(), {}, ["empty"]),
     ("points but no triangles", points_only(), {}, ["empty", "triangles"]),
     ("closed surface", sphere(), {}, ["closed", "euler characteristic 2"]),
-    ("annulus", annulus(), {}, ["2 boundary loops"]),
+    ("annulus without FillHoles", annulus(), {"FillHoles": 0}, ["2 boundary loops", "fillholes"]),
+    ("torus with two holes", torus_with_hole(holes=2), {}, ["2 boundary loops", "genus 1"]),
     ("torus with one hole", torus_with_hole(), {}, ["genus 1", "euler characteristic -1"]),
     ("three triangles on an edge", three_triangles_on_an_edge(), {},
      [("non-manifold", "same direction"), "triangles 11 and 32", "(6, 12)"]),

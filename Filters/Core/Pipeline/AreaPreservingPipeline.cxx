@@ -91,7 +91,7 @@ void sample(const AreaPreservingOptions& options, AreaPreservingResult& run)
 
 void compose(const AreaPreservingOptions& options, AreaPreservingResult& run)
 {
-  const ConformalStage& conformal = run.conformal;
+  ConformalStage& conformal = run.conformal;
   run.sampleImages = inverseTransportOfDiracs(run.diracs, run.transport);
   CompositionOptions compositionOptions = options.composition;
   compositionOptions.progress = stageProgress(options, CompositionRange);
@@ -109,7 +109,17 @@ void compose(const AreaPreservingOptions& options, AreaPreservingResult& run)
       run.status.error = "composition: " + run.composition.status.error + ".";
       return;
     }
-    run.figures = measureDistortion(conformal.surface.mesh, run.composition.uv);
+    // A hole fill was mapped with the surface (it is part of the disk) and is dropped now:
+    // the figures speak of the input's own triangles.
+    CompositionResult& composition = run.composition;
+    keepInputPart(conformal, { &composition.uv, &composition.interpolatedUv });
+    run.figures = measureDistortion(conformal.surface.mesh, composition.uv);
+    if (conformal.filledHoles > 0)
+    {
+      composition.meanAbsLogAreaRatio = run.figures.meanAbsLogAreaRatio;
+      composition.meanAbsLogAreaRatioInterpolated =
+        measureDistortion(conformal.surface.mesh, composition.interpolatedUv).meanAbsLogAreaRatio;
+    }
   }
   catch (const std::exception& e)
   {

@@ -1,6 +1,7 @@
 #include "Pipeline/DiskStages.h"
 
 #include "Common/IdList.h"
+#include "Mesh/HoleFilling.h"
 
 #include <algorithm>
 #include <cmath>
@@ -21,7 +22,10 @@ std::string normalizationVertices(const TriangleSoup& soup, const ConformalStage
   std::vector<int> meshId(soup.points.size(), -1);
   for (std::size_t v = 0; v < surface.originalPointIds.size(); ++v)
   {
-    meshId[surface.originalPointIds[v]] = static_cast<int>(v);
+    if (surface.originalPointIds[v] >= 0) // not a hole-fill point
+    {
+      meshId[surface.originalPointIds[v]] = static_cast<int>(v);
+    }
   }
   std::ostringstream msg;
   auto toMeshId = [&](std::int64_t id, const char* property, int& out)
@@ -68,6 +72,50 @@ std::string normalizationVertices(const TriangleSoup& soup, const ConformalStage
   }
   return msg.str();
 }
+
+// The stage's surface made a disk: checked, and with FillHoles its extra boundary loops
+// closed; "" or what is wrong with the input.
+std::string makeDisk(const ConformalStageOptions& options, ConformalStage& stage)
+{
+  CompactedMesh& surface = stage.surface;
+  SurfaceTopology topology;
+  std::string error = analyzeSurface(surface.mesh, topology, &surface.originalPointIds);
+  if (!error.empty())
+  {
+    return error;
+  }
+  const long long loops = static_cast<long long>(topology.boundaryLoops.size());
+  const long long genus = (2 - topology.eulerCharacteristic - loops) / 2;
+  if (loops > 1 && topology.components == 1)
+  {
+    std::ostringstream msg;
+    msg << "the surface has " << loops << " boundary loops";
+    if (!options.fillHoles)
+    {
+      return msg.str() +
+        "; a disk-like surface needs exactly 1 (turn FillHoles on to close all but the longest)";
+    }
+    if (genus != 0)
+    {
+      msg << " and genus " << genus << " (Euler characteristic " << topology.eulerCharacteristic
+          << "); FillHoles closes holes, but the surface must have genus 0 to become a disk";
+      return msg.str();
+    }
+    FilledSurface filled;
+    error = fillHolesButLongest(surface.mesh, topology.boundaryLoops, filled);
+    if (!error.empty())
+    {
+      return msg.str() + ", and " + error;
+    }
+    stage.filledHoles = filled.filledHoles;
+    stage.fillAreaFraction = filled.fillAreaFraction;
+    surface.mesh = std::move(filled.mesh);
+    surface.originalPointIds.resize(surface.mesh.points.size(), -1);
+    error = checkDiskTopology(surface.mesh, stage.boundaryLoop, &surface.originalPointIds);
+    return error.empty() ? error : "closing its holes gave a surface that is not a disk: " + error;
+  }
+  return checkDiskTopology(surface.mesh, stage.boundaryLoop, &surface.originalPointIds);
+}
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -92,10 +140,11 @@ ConformalStage runConformalStage(const TriangleSoup& soup, const ConformalStageO
     return stage;
   }
   std::string error = compactMesh(soup.points, soup.triangles, stage.surface);
+  stage.inputPoints = stage.surface.mesh.points.size();
+  stage.inputTriangles = stage.surface.mesh.triangles.size();
   if (error.empty())
   {
-    error =
-      checkDiskTopology(stage.surface.mesh, stage.boundaryLoop, &stage.surface.originalPointIds);
+    error = makeDisk(options, stage);
   }
   if (!error.empty())
   {
@@ -151,6 +200,27 @@ ConformalStage runConformalStage(const TriangleSoup& soup, const ConformalStageO
     status.warnings.push_back(msg.str());
   }
   return stage;
+}
+
+//------------------------------------------------------------------------------
+void keepInputPart(ConformalStage& stage, std::vector<std::vector<Vec2>*> perPointMaps)
+{
+  if (stage.surface.mesh.points.size() == stage.inputPoints &&
+    stage.surface.mesh.triangles.size() == stage.inputTriangles)
+  {
+    return;
+  }
+  SurfaceMesh& mesh = stage.surface.mesh;
+  mesh.points.resize(stage.inputPoints);
+  mesh.triangles.resize(stage.inputTriangles);
+  stage.surface.originalPointIds.resize(stage.inputPoints);
+  perPointMaps.push_back(&stage.map.uv);
+  for (std::vector<Vec2>* map : perPointMaps)
+  {
+    map->resize(std::min(map->size(), stage.inputPoints));
+  }
+  stage.figures = measureDistortion(mesh, stage.map.uv);
+  computeAreaDensity(mesh, stage.map.uv, stage.areaDensityPerTriangle, stage.areaDensityPerPoint);
 }
 
 //------------------------------------------------------------------------------

@@ -30,6 +30,9 @@ struct ConformalStageOptions
   // map.alignVertex are set from them.
   std::int64_t centerPointId = -1;
   std::int64_t alignPointId = -1;
+  // A genus-0 surface with several boundary loops: keep the longest as the circle and close
+  // the others for the computation (keepInputPart drops the fill again).
+  bool fillHoles = true;
   ConformalDiskMapOptions map;
 
   std::string check() const; // "" or what is wrong with a value
@@ -38,15 +41,32 @@ struct ConformalStageOptions
 struct ConformalStage
 {
   Status status;
-  CompactedMesh surface;         // the soup's referenced part (ids of the stage's outputs)
+  // The soup's referenced part (ids of the stage's outputs), then any hole fill: the input's
+  // points and triangles are the first inputPoints / inputTriangles (fill points have
+  // original id -1).
+  CompactedMesh surface;
+  std::size_t inputPoints = 0, inputTriangles = 0;
+  int filledHoles = 0;
+  double fillAreaFraction = 0.0; // the fill's share of the surface area (and of the disk)
   std::vector<int> boundaryLoop; // in the triangles' orientation
-  ConformalDiskMapResult map;    // map.uv per point of `surface`
-  DistortionFigures figures;     // of the conformal map
+  // The input id of a surface point, -1 for a hole-fill point (e.g. an automatic centre).
+  std::int64_t inputId(int point) const
+  {
+    return point >= 0 && static_cast<std::size_t>(point) < this->surface.originalPointIds.size()
+      ? this->surface.originalPointIds[point]
+      : -1;
+  }
+  ConformalDiskMapResult map; // map.uv per point of `surface`
+  DistortionFigures figures;  // of the conformal map
   std::vector<double> areaDensityPerTriangle, areaDensityPerPoint;
   double maximumBoundaryRadiusError = 0.0;
 };
 
 ConformalStage runConformalStage(const TriangleSoup& soup, const ConformalStageOptions& options);
+
+// Drops the hole fill from a stage's surface, map, densities and figures (which are measured
+// again on the input's own triangles); `perPointMaps` are cut to the input's points as well.
+void keepInputPart(ConformalStage& stage, std::vector<std::vector<Vec2>*> perPointMaps = {});
 
 // ---- Stage 2: samples of equal mass of a density on a planar triangulated domain.
 

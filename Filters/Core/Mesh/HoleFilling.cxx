@@ -1,0 +1,145 @@
+#include "Mesh/HoleFilling.h"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/triangulate_hole.h>
+#include <CGAL/Surface_mesh.h>
+
+#include <iterator>
+#include <sstream>
+
+namespace otparam
+{
+namespace
+{
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Mesh = CGAL::Surface_mesh<Kernel::Point_3>;
+namespace PMP = CGAL::Polygon_mesh_processing;
+
+double loopLength(const SurfaceMesh& mesh, const std::vector<int>& loop)
+{
+  double length = 0.0;
+  for (std::size_t k = 0; k < loop.size(); ++k)
+  {
+    length += norm(mesh.points[loop[(k + 1) % loop.size()]] - mesh.points[loop[k]]);
+  }
+  return length;
+}
+
+// Surface_mesh numbers vertices and faces in the order they are added, and appends what the
+// hole filling adds: the input's ids stay valid.
+Mesh toSurfaceMesh(const SurfaceMesh& mesh)
+{
+  Mesh out;
+  out.reserve(static_cast<Mesh::size_type>(mesh.points.size()),
+    static_cast<Mesh::size_type>(3 * mesh.triangles.size() / 2),
+    static_cast<Mesh::size_type>(mesh.triangles.size()));
+  for (const Vec3& p : mesh.points)
+  {
+    out.add_vertex(Kernel::Point_3(p.x, p.y, p.z));
+  }
+  for (const Triangle& t : mesh.triangles)
+  {
+    out.add_face(Mesh::Vertex_index(t[0]), Mesh::Vertex_index(t[1]), Mesh::Vertex_index(t[2]));
+  }
+  return out;
+}
+
+// The border halfedge (the one with no face) along the loop's first edge.
+Mesh::Halfedge_index borderHalfedge(const Mesh& mesh, const std::vector<int>& loop)
+{
+  const Mesh::Vertex_index a(loop[0]), b(loop[1]);
+  for (Mesh::Halfedge_index h : CGAL::halfedges_around_target(a, mesh))
+  {
+    if (mesh.source(h) == b && mesh.is_border(h))
+    {
+      return h;
+    }
+    const Mesh::Halfedge_index o = mesh.opposite(h);
+    if (mesh.target(o) == b && mesh.is_border(o))
+    {
+      return o;
+    }
+  }
+  return Mesh::null_halfedge();
+}
+} // namespace
+
+std::size_t longestLoop(const SurfaceMesh& mesh, const std::vector<std::vector<int>>& loops)
+{
+  std::size_t longest = 0;
+  for (std::size_t k = 1; k < loops.size(); ++k)
+  {
+    if (loopLength(mesh, loops[k]) > loopLength(mesh, loops[longest]))
+    {
+      longest = k;
+    }
+  }
+  return longest;
+}
+
+std::string fillHolesButLongest(
+  const SurfaceMesh& mesh, const std::vector<std::vector<int>>& loops, FilledSurface& filled)
+{
+  filled = FilledSurface();
+  const std::size_t kept = longestLoop(mesh, loops);
+  Mesh cgalMesh = toSurfaceMesh(mesh);
+  for (std::size_t k = 0; k < loops.size(); ++k)
+  {
+    if (k == kept)
+    {
+      continue;
+    }
+    const Mesh::Halfedge_index h = borderHalfedge(cgalMesh, loops[k]);
+    std::vector<Mesh::Face_index> faces;
+    if (h != Mesh::null_halfedge())
+    {
+      // Fairing may fail (its linear system singular on a degenerate rim); the refined
+      // patch it leaves is still a valid fill, which is all the computation needs.
+      PMP::triangulate_refine_and_fair_hole(cgalMesh, h, std::back_inserter(faces),
+        CGAL::Emptyset_iterator(), CGAL::parameters::fairing_continuity(1));
+    }
+    if (faces.empty())
+    {
+      std::ostringstream msg;
+      msg << "the hole along boundary loop " << k + 1 << " (" << loops[k].size()
+          << " edges, through point " << loops[k][0] << ") could not be closed";
+      return msg.str();
+    }
+    ++filled.filledHoles;
+  }
+  filled.mesh.points = mesh.points;
+  filled.mesh.triangles = mesh.triangles;
+  for (Mesh::Vertex_index v : cgalMesh.vertices())
+  {
+    if (static_cast<std::size_t>(v) >= mesh.points.size())
+    {
+      const Kernel::Point_3& p = cgalMesh.point(v);
+      filled.mesh.points.push_back({ p.x(), p.y(), p.z() });
+    }
+  }
+  double inputArea = 0.0, fillArea = 0.0;
+  for (const Triangle& t : mesh.triangles)
+  {
+    inputArea += triangleArea(mesh, t);
+  }
+  for (Mesh::Face_index f : cgalMesh.faces())
+  {
+    if (static_cast<std::size_t>(f) < mesh.triangles.size())
+    {
+      continue;
+    }
+    Triangle t;
+    int k = 0;
+    for (Mesh::Vertex_index v : CGAL::vertices_around_face(cgalMesh.halfedge(f), cgalMesh))
+    {
+      t[k++] = static_cast<int>(v);
+    }
+    filled.mesh.triangles.push_back(t);
+    fillArea += triangleArea(filled.mesh, t);
+  }
+  filled.boundaryLoop = loops[kept];
+  filled.fillAreaFraction = fillArea / (inputArea + fillArea);
+  return {};
+}
+
+} // namespace otparam

@@ -1,0 +1,36 @@
+// Real scans have holes: a genus-0 surface with several boundary loops is made a disk for the
+// computation by closing every loop but the longest (the one that becomes the circle).
+#ifndef OTPARAM_MESH_HOLEFILLING_H
+#define OTPARAM_MESH_HOLEFILLING_H
+
+#include "Mesh/SurfaceMesh.h"
+
+#include <string>
+#include <vector>
+
+namespace otparam
+{
+
+struct FilledSurface
+{
+  // The input's points and triangles first, in their order, then the fill's: the input part
+  // of any per-point or per-triangle result is its leading part.
+  SurfaceMesh mesh;
+  std::vector<int> boundaryLoop; // the kept loop, in the triangles' orientation
+  int filledHoles = 0;
+  double fillAreaFraction = 0.0; // the fill's share of the filled surface's area
+};
+
+// Index of the longest loop by surface (3D) length.
+std::size_t longestLoop(const SurfaceMesh& mesh, const std::vector<std::vector<int>>& loops);
+
+// `mesh` must be a connected, manifold, oriented surface of genus 0 with the boundary loops
+// `loops` (as analyzeSurface reports them). Closes every loop but the longest with CGAL's
+// hole filling (triangulate, refine to the rim's edge lengths, fair), and returns "" or a
+// message naming the hole that could not be closed.
+std::string fillHolesButLongest(
+  const SurfaceMesh& mesh, const std::vector<std::vector<int>>& loops, FilledSurface& filled);
+
+} // namespace otparam
+
+#endif

@@ -1,0 +1,137 @@
+// Hole filling on planar disks with 1, 3 and 10 round holes: every loop but the outer one is
+// closed, the input's points and triangles stay the leading part in their order, the result
+// is a disk, and the planar fill covers exactly the holes (fairing a planar rim in a plane
+// keeps it planar, so the fill's area is the holes' area).
+#include "Mesh/HoleFilling.h"
+
+#include "RingDisk.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace otparam;
+
+namespace
+{
+struct Hole
+{
+  Vec2 centre;
+  double radius;
+};
+
+// The planar ring disk without the triangles whose centroid is in a hole (and the points
+// they leave unused).
+SurfaceMesh diskWithHoles(const std::vector<Hole>& holes, double& holesArea)
+{
+  const otparam::testing::PlanarMesh disk = otparam::testing::makePlanarDisk(30);
+  SurfaceMesh mesh;
+  for (Vec2 p : disk.points)
+  {
+    mesh.points.push_back({ p.x, p.y, 0.0 });
+  }
+  holesArea = 0.0;
+  for (const Triangle& t : disk.triangles)
+  {
+    const Vec2 centroid = (1.0 / 3.0) * (disk.points[t[0]] + disk.points[t[1]] + disk.points[t[2]]);
+    bool inHole = false;
+    for (const Hole& hole : holes)
+    {
+      inHole = inHole || norm(centroid - hole.centre) < hole.radius;
+    }
+    if (inHole)
+    {
+      holesArea += triangleArea(mesh, t);
+    }
+    else
+    {
+      mesh.triangles.push_back(t);
+    }
+  }
+  std::vector<std::array<std::int64_t, 3>> triangles;
+  for (const Triangle& t : mesh.triangles)
+  {
+    triangles.push_back({ t[0], t[1], t[2] });
+  }
+  CompactedMesh compacted;
+  compactMesh(mesh.points, triangles, compacted);
+  return compacted.mesh;
+}
+
+std::vector<Hole> holesOf(int count)
+{
+  if (count == 1)
+  {
+    return { { { 0.25, 0.1 }, 0.25 } };
+  }
+  std::vector<Hole> holes;
+  for (int j = 0; j < count; ++j)
+  {
+    const double angle = 2.0 * 3.14159265358979323846 * j / count;
+    holes.push_back({ { 0.55 * std::cos(angle), 0.55 * std::sin(angle) }, 0.05 + 0.04 * (j % 3) });
+  }
+  return holes;
+}
+} // namespace
+
+TEST(HoleFilling, ClosesEveryLoopButTheLongest)
+{
+  for (int count : { 1, 3, 10 })
+  {
+    SCOPED_TRACE(count);
+    double holesArea = 0.0;
+    const SurfaceMesh mesh = diskWithHoles(holesOf(count), holesArea);
+    SurfaceTopology topology;
+    ASSERT_EQ(analyzeSurface(mesh, topology), "");
+    ASSERT_EQ(topology.boundaryLoops.size(), static_cast<size_t>(count + 1));
+
+    FilledSurface filled;
+    ASSERT_EQ(fillHolesButLongest(mesh, topology.boundaryLoops, filled), "");
+    EXPECT_EQ(filled.filledHoles, count);
+    for (int v : filled.boundaryLoop)
+    {
+      EXPECT_NEAR(std::hypot(mesh.points[v].x, mesh.points[v].y), 1.0, 1e-12);
+    }
+    ASSERT_GT(filled.mesh.triangles.size(), mesh.triangles.size());
+    for (size_t v = 0; v < mesh.points.size(); ++v)
+    {
+      ASSERT_EQ(filled.mesh.points[v].x, mesh.points[v].x);
+      ASSERT_EQ(filled.mesh.points[v].y, mesh.points[v].y);
+    }
+    for (size_t t = 0; t < mesh.triangles.size(); ++t)
+    {
+      ASSERT_EQ(filled.mesh.triangles[t], mesh.triangles[t]);
+    }
+    double inputArea = 0.0, fillArea = 0.0;
+    for (size_t t = 0; t < filled.mesh.triangles.size(); ++t)
+    {
+      const double area = triangleArea(filled.mesh, filled.mesh.triangles[t]);
+      (t < mesh.triangles.size() ? inputArea : fillArea) += area;
+    }
+    for (size_t v = mesh.points.size(); v < filled.mesh.points.size(); ++v)
+    {
+      EXPECT_NEAR(filled.mesh.points[v].z, 0.0, 1e-9); // a planar fill
+    }
+    EXPECT_NEAR(fillArea, holesArea, 1e-9);
+    EXPECT_NEAR(filled.fillAreaFraction, fillArea / (inputArea + fillArea), 1e-12);
+    std::vector<int> loop;
+    EXPECT_EQ(checkDiskTopology(filled.mesh, loop), "");
+    EXPECT_EQ(loop.size(), filled.boundaryLoop.size());
+  }
+}
+
+TEST(HoleFilling, KeepsTheLongestLoopByLength)
+{
+  // A hole of radius 0.9 leaves a thin ring: its loop (length ~5.6) is nearly as long as the
+  // rim (2 pi), and the rim, the longer, is kept whatever the loops' order.
+  double holesArea = 0.0;
+  const SurfaceMesh mesh = diskWithHoles({ { { 0.0, 0.0 }, 0.9 } }, holesArea);
+  SurfaceTopology topology;
+  ASSERT_EQ(analyzeSurface(mesh, topology), "");
+  ASSERT_EQ(topology.boundaryLoops.size(), 2u);
+  const size_t longest = longestLoop(mesh, topology.boundaryLoops);
+  for (int v : topology.boundaryLoops[longest])
+  {
+    EXPECT_NEAR(std::hypot(mesh.points[v].x, mesh.points[v].y), 1.0, 1e-12);
+  }
+}
