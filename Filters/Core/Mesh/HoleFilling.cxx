@@ -67,11 +67,14 @@ Mesh::Halfedge_index borderHalfedge(const Mesh& mesh, const std::vector<int>& lo
 std::size_t longestLoop(const SurfaceMesh& mesh, const std::vector<std::vector<int>>& loops)
 {
   std::size_t longest = 0;
-  for (std::size_t k = 1; k < loops.size(); ++k)
+  double longestLength = -1.0;
+  for (std::size_t k = 0; k < loops.size(); ++k)
   {
-    if (loopLength(mesh, loops[k]) > loopLength(mesh, loops[longest]))
+    const double length = loopLength(mesh, loops[k]);
+    if (length > longestLength)
     {
       longest = k;
+      longestLength = length;
     }
   }
   return longest;
