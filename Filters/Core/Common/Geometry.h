@@ -51,6 +51,14 @@ inline Vec3 operator-(Vec3 a, Vec3 b)
 {
   return { a.x - b.x, a.y - b.y, a.z - b.z };
 }
+inline Vec3 operator+(Vec3 a, Vec3 b)
+{
+  return { a.x + b.x, a.y + b.y, a.z + b.z };
+}
+inline Vec3 operator*(double s, Vec3 a)
+{
+  return { s * a.x, s * a.y, s * a.z };
+}
 inline double dot(Vec3 a, Vec3 b)
 {
   return a.x * b.x + a.y * b.y + a.z * b.z;
@@ -62,6 +70,10 @@ inline Vec3 cross(Vec3 a, Vec3 b)
 inline double norm(Vec3 a)
 {
   return std::sqrt(dot(a, a));
+}
+inline Vec3 normalized(Vec3 a)
+{
+  return (1.0 / norm(a)) * a;
 }
 
 using Triangle = std::array<int, 3>;

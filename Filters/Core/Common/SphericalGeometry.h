@@ -1,0 +1,99 @@
+// Geometry on the unit sphere shared by the sphere's stages (sphere.md): spherical triangles and
+// convex spherical polygons bounded by great-circle arcs, given by their unit vertex vectors in
+// counter-clockwise order seen from outside.
+#ifndef OTPARAM_COMMON_SPHERICALGEOMETRY_H
+#define OTPARAM_COMMON_SPHERICALGEOMETRY_H
+
+#include "Common/Geometry.h"
+
+#include <cmath>
+#include <vector>
+
+namespace otparam
+{
+
+// Signed area of the spherical triangle abc (positive when counter-clockwise seen from
+// outside), by Eriksson's formula tan(E / 2) = a.(b x c) / (1 + a.b + b.c + c.a). The triple
+// product is taken of differences, a.((b - a) x (c - a)), which keeps its relative precision
+// for tiny triangles.
+inline double sphericalTriangleArea(Vec3 a, Vec3 b, Vec3 c)
+{
+  const double triple = dot(a, cross(b - a, c - a));
+  return 2.0 * std::atan2(triple, 1.0 + dot(a, b) + dot(b, c) + dot(c, a));
+}
+
+// Area of a convex spherical polygon (fan from its first vertex).
+inline double sphericalPolygonArea(const std::vector<Vec3>& polygon)
+{
+  double area = 0.0;
+  for (size_t k = 1; k + 1 < polygon.size(); ++k)
+  {
+    area += sphericalTriangleArea(polygon[0], polygon[k], polygon[k + 1]);
+  }
+  return area;
+}
+
+// Angle between unit vectors, accurate for small angles too.
+inline double sphericalDistance(Vec3 a, Vec3 b)
+{
+  return std::atan2(norm(cross(a, b)), dot(a, b));
+}
+
+// The integral of x dA over a convex spherical polygon (its centroid, unnormalized): the
+// region and the planar sectors joining its edges to the origin close a surface over which the
+// normal integrates to 0, so it is sum over edges of (angle / 2) times the edge's plane normal
+// pointing inside.
+inline Vec3 sphericalPolygonMoment(const std::vector<Vec3>& polygon)
+{
+  Vec3 moment;
+  for (size_t k = 0; k < polygon.size(); ++k)
+  {
+    const Vec3 a = polygon[k], b = polygon[(k + 1) % polygon.size()];
+    const Vec3 normal = cross(a, b);
+    const double length = norm(normal);
+    if (length > 0.0)
+    {
+      moment = moment + (0.5 * sphericalDistance(a, b) / length) * normal;
+    }
+  }
+  return moment;
+}
+
+// The part of a convex spherical polygon where dot(normal, x) >= 0 (Sutherland-Hodgman with
+// great-circle arcs: an arc crosses the plane at the normalized positive combination of its
+// ends, which stays on the arc).
+inline std::vector<Vec3> clipByGreatCircle(const std::vector<Vec3>& polygon, Vec3 normal)
+{
+  std::vector<Vec3> out;
+  const size_t n = polygon.size();
+  for (size_t k = 0; k < n; ++k)
+  {
+    const Vec3 a = polygon[k], b = polygon[(k + 1) % n];
+    const double da = dot(normal, a), db = dot(normal, b);
+    if (da >= 0.0)
+    {
+      out.push_back(a);
+    }
+    if ((da >= 0.0) != (db >= 0.0))
+    {
+      const double t = da / (da - db);
+      out.push_back(normalized((1.0 - t) * a + t * b));
+    }
+  }
+  return out;
+}
+
+// The intersection of two convex spherical polygons (each within a hemisphere).
+inline std::vector<Vec3> intersectSphericalPolygons(
+  std::vector<Vec3> subject, const std::vector<Vec3>& clip)
+{
+  for (size_t k = 0; k < clip.size() && subject.size() >= 3; ++k)
+  {
+    subject = clipByGreatCircle(subject, cross(clip[k], clip[(k + 1) % clip.size()]));
+  }
+  return subject.size() >= 3 ? subject : std::vector<Vec3>{};
+}
+
+} // namespace otparam
+
+#endif

@@ -1,0 +1,182 @@
+// The spherical transport (sphere.md): the diagram's geometry (areas summing to 4 pi, outward
+// hull), the Hessian against finite differences, the Voronoi start, convergence at high mass
+// contrast, a zonal target against its analytic latitude map, and bad input.
+#include "Common/SphericalGeometry.h"
+#include "SphereMeshes.h"
+#include "Transport/SphericalOT.h"
+#include "Transport/SphericalPowerDiagram.h"
+
+#include <gtest/gtest.h>
+
+#include <numeric>
+#include <random>
+
+namespace otparam
+{
+namespace
+{
+std::vector<Vec3> randomSphere(int n, unsigned seed)
+{
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> normal;
+  std::vector<Vec3> points(n);
+  for (Vec3& p : points)
+  {
+    p = normalized({ normal(rng), normal(rng), normal(rng) });
+  }
+  return points;
+}
+
+std::vector<double> randomHeights(int n, double spread, unsigned seed)
+{
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> uniform(-spread, spread);
+  std::vector<double> psi(n);
+  for (double& h : psi)
+  {
+    h = uniform(rng);
+  }
+  return psi;
+}
+
+TEST(SphericalOT, CellAreasSumToFourPiAndHullIsOutward)
+{
+  const std::vector<Vec3> diracs = testing::fibonacciSphere(2000);
+  const std::vector<double> psi = randomHeights(2000, 3e-4, 1);
+  const SphericalCellMeasures m = computeSphericalCellMeasures(diracs, psi);
+  const double total = std::accumulate(m.area.begin(), m.area.end(), 0.0);
+  EXPECT_NEAR(total, 4.0 * M_PI, 1e-12);
+  const auto geometry = computeSphericalPowerDiagramGeometry(diracs, psi);
+  ASSERT_EQ(geometry.cells.size(), diracs.size()); // no Dirac hidden
+  EXPECT_EQ(geometry.triangles.size(), 2 * diracs.size() - 4);
+  for (const Triangle& t : geometry.triangles)
+  {
+    ASSERT_GT(dot(diracs[t[0]], cross(diracs[t[1]], diracs[t[2]])), 0.0);
+  }
+}
+
+TEST(SphericalOT, HessianMatchesFiniteDifferences)
+{
+  const int n = 60;
+  const std::vector<Vec3> diracs = randomSphere(n, 7);
+  const std::vector<double> psi = randomHeights(n, 1e-3, 8);
+  const SphericalCellMeasures at = computeSphericalCellMeasures(diracs, psi, true);
+  double worst = 0.0, largest = 0.0;
+  const double step = 1e-6;
+  for (int j = 0; j < n; ++j)
+  {
+    std::vector<double> up = psi, down = psi;
+    up[j] += step;
+    down[j] -= step;
+    const auto mu = computeSphericalCellMeasures(diracs, up).area;
+    const auto md = computeSphericalCellMeasures(diracs, down).area;
+    for (int i = 0; i < n; ++i)
+    {
+      if (i == j)
+      {
+        continue;
+      }
+      const double fd = (mu[i] - md[i]) / (2.0 * step);
+      const double exact = at.coupling[static_cast<size_t>(i) * n + j];
+      worst = std::max(worst, std::abs(fd - exact));
+      largest = std::max(largest, std::abs(exact));
+    }
+  }
+  EXPECT_GT(largest, 0.1);
+  EXPECT_LT(worst / largest, 1e-7) << "largest coupling " << largest;
+}
+
+TEST(SphericalOT, VoronoiMassesConvergeInZeroIterations)
+{
+  const std::vector<Vec3> diracs = randomSphere(3000, 3);
+  const SphericalCellMeasures voronoi =
+    computeSphericalCellMeasures(diracs, std::vector<double>(diracs.size(), 0.0));
+  const SphericalOTResult r = solveSphericalOT(diracs, voronoi.area);
+  EXPECT_TRUE(r.converged) << r.message;
+  EXPECT_EQ(r.iterations, 0);
+}
+
+TEST(SphericalOT, ConvergesAtMassContrast)
+{
+  for (const double contrast : { 1e2, 1e4, 1e6 })
+  {
+    const int n = 5000;
+    std::vector<Vec3> diracs = randomSphere(n, 11);
+    std::mt19937 rng(12);
+    std::uniform_real_distribution<double> uniform(0.0, 1.0);
+    std::vector<double> masses(n);
+    for (double& m : masses)
+    {
+      m = std::pow(contrast, uniform(rng));
+    }
+    ASSERT_EQ(validateSphericalDiracs(diracs, masses), "");
+    const SphericalOTResult r = solveSphericalOT(diracs, masses);
+    EXPECT_TRUE(r.converged) << "contrast " << contrast << ": " << r.message;
+    EXPECT_LE(r.relativeError, 1e-10);
+    std::printf(
+      "contrast %g: %d iterations, error %.2e\n", contrast, r.iterations, r.relativeError);
+  }
+}
+
+// Target density f(z) = 1 + a z (Diracs at uniform points with masses f(z_i) 4 pi / n): the
+// transport is zonal; the source cap above z_x carries the target mass above z_y, so the
+// centroid of the cell of a Dirac at height z_y sits at z_x = z_y - a (1 - z_y^2) / 2.
+double zonalError(int n)
+{
+  const double a = 0.5;
+  const std::vector<Vec3> diracs = testing::fibonacciSphere(n);
+  std::vector<double> masses(n);
+  for (int i = 0; i < n; ++i)
+  {
+    masses[i] = 1.0 + a * diracs[i].z;
+  }
+  const SphericalOTResult r = solveSphericalOT(diracs, masses);
+  EXPECT_TRUE(r.converged) << r.message;
+  double worst = 0.0;
+  for (int i = 0; i < n; ++i)
+  {
+    const double z = diracs[i].z;
+    worst = std::max(worst, std::abs(r.centroids[i].z - (z - 0.5 * a * (1.0 - z * z))));
+  }
+  return worst;
+}
+
+TEST(SphericalOT, ZonalTargetFollowsTheLatitudeMap)
+{
+  const double coarse = zonalError(1000), fine = zonalError(8000);
+  std::printf("zonal: max |z error| %.4f at 1000 Diracs, %.4f at 8000\n", coarse, fine);
+  EXPECT_LT(coarse, 0.05);
+  EXPECT_LT(fine, 0.6 * coarse);
+}
+
+TEST(SphericalOT, BadInput)
+{
+  std::vector<Vec3> diracs = randomSphere(100, 5);
+  std::vector<double> masses(100, 1.0);
+  auto error = [&](std::vector<Vec3> d, std::vector<double> m)
+  { return validateSphericalDiracs(d, m); };
+  EXPECT_EQ(error(diracs, masses), "");
+  auto off = diracs;
+  off[17] = 1.1 * off[17];
+  EXPECT_NE(error(off, masses).find("not on the unit sphere (point ids 17)"), std::string::npos);
+  auto badMass = masses;
+  badMass[3] = -1.0;
+  EXPECT_NE(error(diracs, badMass).find("Mass"), std::string::npos);
+  badMass[3] = NAN;
+  EXPECT_NE(error(diracs, badMass).find("Mass"), std::string::npos);
+  auto twin = diracs;
+  twin[9] = twin[4];
+  EXPECT_NE(error(twin, masses).find("share their position"), std::string::npos);
+  auto north = diracs;
+  for (Vec3& y : north)
+  {
+    y.z = std::abs(y.z);
+  }
+  EXPECT_NE(error(north, masses).find("hemisphere"), std::string::npos);
+  EXPECT_NE(
+    error(std::vector<Vec3>(diracs.begin(), diracs.begin() + 3), { 1, 1, 1 }).find("at least 4"),
+    std::string::npos);
+}
+
+} // namespace
+} // namespace otparam
