@@ -27,6 +27,8 @@
 // the solve and put back on the circle between their two neighbours afterwards.
 #include "Conformal/ConformalDiskMap.h"
 
+#include "Conformal/CotangentLaplacian.h"
+
 #include "Mesh/IntrinsicDelaunay.h"
 
 #include "Common/SparseCholesky.h"
@@ -227,23 +229,7 @@ public:
       ? intrinsicDelaunay(kept, lengths)
       : IntrinsicTriangulation{ kept, lengths, 0 };
     IntrinsicFlips = intrinsic.flips;
-    std::vector<Eigen::Triplet<double>> entries;
-    entries.reserve(12 * intrinsic.triangles.size());
-    for (size_t t = 0; t < intrinsic.triangles.size(); ++t)
-    {
-      const Triangle& tri = intrinsic.triangles[t];
-      for (int k = 0; k < 3; ++k)
-      {
-        const double half = halfCotangent(intrinsic.lengths[t], k);
-        const int a = tri[(k + 1) % 3], b = tri[(k + 2) % 3];
-        entries.emplace_back(a, b, -half);
-        entries.emplace_back(b, a, -half);
-        entries.emplace_back(a, a, half);
-        entries.emplace_back(b, b, half);
-      }
-    }
-    L.resize(N, N);
-    L.setFromTriplets(entries.begin(), entries.end());
+    L = cotangentLaplacian(intrinsic, N);
 
     BoundaryLength.resize(NB);
     for (int i = 0; i < NB; ++i)

@@ -1,5 +1,7 @@
 #include "Mesh/DistortionMetrics.h"
 
+#include "Common/SphericalGeometry.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -161,6 +163,136 @@ void computeAreaDensity(const SurfaceMesh& surface, const std::vector<Vec2>& uv,
   for (size_t v = 0; v < perPoint.size(); ++v)
   {
     perPoint[v] = pointDiskArea[v] > 0.0 ? perPoint[v] / pointDiskArea[v] : largest;
+  }
+}
+
+namespace
+{
+// The chordal triangle abc in an orthonormal frame of its own plane (a at the origin, b on the
+// x axis), so the planar dilatation applies; singular values do not see the frame.
+std::array<Vec2, 3> inOwnPlane(Vec3 a, Vec3 b, Vec3 c)
+{
+  const Vec3 e1 = b - a, e2 = c - a;
+  const double l1 = norm(e1);
+  const Vec3 x = (1.0 / l1) * e1;
+  Vec3 y = cross(cross(e1, e2), x);
+  const double ly = norm(y);
+  y = (1.0 / std::max(ly, TinyArea)) * y;
+  return { Vec2{ 0.0, 0.0 }, Vec2{ l1, 0.0 }, Vec2{ dot(e2, x), dot(e2, y) } };
+}
+
+std::vector<Vec3> unitVectors(const std::vector<Vec3>& points)
+{
+  std::vector<Vec3> unit(points.size());
+  for (size_t v = 0; v < points.size(); ++v)
+  {
+    unit[v] = normalized(points[v]);
+  }
+  return unit;
+}
+} // namespace
+
+DistortionFigures measureSphereDistortion(
+  const SurfaceMesh& surface, const std::vector<Vec3>& sphere)
+{
+  DistortionFigures f;
+  const size_t nt = surface.triangles.size();
+  f.angleDistortion.assign(nt, 0.0);
+  f.dilatation.assign(nt, 1.0);
+  f.logAreaRatio.assign(nt, 0.0);
+  const std::vector<Vec3> unit = unitVectors(sphere);
+  std::vector<double> surfaceArea(nt);
+  double surfaceTotal = 0.0;
+  for (size_t t = 0; t < nt; ++t)
+  {
+    surfaceArea[t] = triangleArea(surface, surface.triangles[t]);
+    surfaceTotal += surfaceArea[t] > 0.0 ? surfaceArea[t] : 0.0;
+  }
+  // As the scorer: triangles of zero surface area are left out of every figure.
+  double angleSum = 0.0;
+  size_t corners = 0;
+  for (size_t t = 0; t < nt; ++t)
+  {
+    if (!(surfaceArea[t] > 0.0))
+    {
+      continue;
+    }
+    const auto& tri = surface.triangles[t];
+    const Vec3 a = unit[tri[0]], b = unit[tri[1]], c = unit[tri[2]];
+    const double sphericalArea = sphericalTriangleArea(a, b, c);
+    f.flippedTriangles += sphericalArea <= 0.0;
+    const Vec3 p0 = surface.points[tri[0]], p1 = surface.points[tri[1]],
+               p2 = surface.points[tri[2]];
+    const auto a3 = cornerAngles(p0, p1, p2);
+    const auto image = cornerAngles(a, b, c);
+    double logSum = 0.0;
+    for (int k = 0; k < 3; ++k)
+    {
+      const double degrees = std::abs(image[k] - a3[k]) * 180.0 / Pi;
+      angleSum += degrees;
+      f.maximumAngleDistortionDegrees = std::max(f.maximumAngleDistortionDegrees, degrees);
+      logSum += std::abs(std::log(std::max(image[k], TinyArea) / a3[k]));
+    }
+    corners += 3;
+    f.angleDistortion[t] = logSum / 3.0;
+
+    const double weight = surfaceArea[t] / surfaceTotal;
+    const double sphereFraction = std::max(sphericalArea, TinyArea) / (4.0 * Pi);
+    f.logAreaRatio[t] = std::log(sphereFraction / weight);
+    f.meanAbsLogAreaRatio += weight * std::abs(f.logAreaRatio[t]);
+    f.maximumAbsLogAreaRatio = std::max(f.maximumAbsLogAreaRatio, std::abs(f.logAreaRatio[t]));
+
+    const auto q = inOwnPlane(a, b, c);
+    f.dilatation[t] = dilatation(p0, p1, p2, q[0], q[1], q[2]);
+    f.meanDilatation += weight * f.dilatation[t];
+    f.maximumDilatation = std::max(f.maximumDilatation, f.dilatation[t]);
+  }
+  f.meanAngleDistortionDegrees = corners ? angleSum / static_cast<double>(corners) : 0.0;
+  return f;
+}
+
+void computeSphereAreaDensity(const SurfaceMesh& surface, const std::vector<Vec3>& sphere,
+  std::vector<double>& perTriangle, std::vector<double>& perPoint)
+{
+  const size_t nt = surface.triangles.size();
+  const std::vector<Vec3> unit = unitVectors(sphere);
+  std::vector<double> surfaceArea(nt), sphericalArea(nt);
+  double surfaceTotal = 0.0;
+  for (size_t t = 0; t < nt; ++t)
+  {
+    const auto& tri = surface.triangles[t];
+    surfaceArea[t] = triangleArea(surface, tri);
+    sphericalArea[t] = sphericalTriangleArea(unit[tri[0]], unit[tri[1]], unit[tri[2]]);
+    surfaceTotal += surfaceArea[t];
+  }
+  const double scale = 4.0 * Pi / surfaceTotal;
+  perTriangle.assign(nt, 0.0);
+  perPoint.assign(surface.points.size(), 0.0);
+  std::vector<double> pointSphericalArea(surface.points.size(), 0.0);
+  double largest = 0.0;
+  for (size_t t = 0; t < nt; ++t)
+  {
+    if (sphericalArea[t] > 0.0)
+    {
+      perTriangle[t] = scale * surfaceArea[t] / sphericalArea[t];
+      largest = std::isfinite(perTriangle[t]) ? std::max(largest, perTriangle[t]) : largest;
+    }
+  }
+  for (size_t t = 0; t < nt; ++t)
+  {
+    if (!(sphericalArea[t] > 0.0) || !std::isfinite(perTriangle[t]))
+    {
+      perTriangle[t] = largest;
+    }
+    for (int v : surface.triangles[t])
+    {
+      perPoint[v] += scale * surfaceArea[t];
+      pointSphericalArea[v] += std::max(sphericalArea[t], 0.0);
+    }
+  }
+  for (size_t v = 0; v < perPoint.size(); ++v)
+  {
+    perPoint[v] = pointSphericalArea[v] > 0.0 ? perPoint[v] / pointSphericalArea[v] : largest;
   }
 }
 

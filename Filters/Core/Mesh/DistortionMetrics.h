@@ -33,6 +33,20 @@ DistortionFigures measureDistortion(const SurfaceMesh& surface, const std::vecto
 void computeAreaDensity(const SurfaceMesh& surface, const std::vector<Vec2>& uv,
   std::vector<double>& perTriangle, std::vector<double>& perPoint);
 
+// The same figures for a map onto the unit sphere (sphere.md), as param_metrics.py --sphere
+// scores it: `sphere` holds a point per surface point (normalized before use); area fractions
+// are spherical triangle areas over 4 pi, angles and dilatations those of the image's straight
+// (chordal) triangles, a flip is a triangle clockwise seen from outside (det(a, b, c) <= 0).
+DistortionFigures measureSphereDistortion(
+  const SurfaceMesh& surface, const std::vector<Vec3>& sphere);
+
+// Surface area element over spherical area element after scaling the surface to total area
+// 4 pi: per triangle (surface area / spherical triangle area, exact) and per point (ratio of
+// the areas of the triangles around it). Flipped or collapsed triangles get the largest finite
+// ratio. Over non-flipped images, sum of perTriangle * spherical area = 4 pi.
+void computeSphereAreaDensity(const SurfaceMesh& surface, const std::vector<Vec3>& sphere,
+  std::vector<double>& perTriangle, std::vector<double>& perPoint);
+
 } // namespace otparam
 
 #endif

@@ -404,4 +404,34 @@ std::string checkDiskTopology(const SurfaceMesh& mesh, std::vector<int>& boundar
   return msg.str();
 }
 
+std::string checkSphereTopology(
+  const SurfaceMesh& mesh, const std::vector<std::int64_t>* reportedIds)
+{
+  SurfaceTopology topology;
+  const std::string error = analyzeSurface(mesh, topology, reportedIds);
+  if (!error.empty())
+  {
+    return error;
+  }
+  std::ostringstream msg;
+  const long long euler = topology.eulerCharacteristic;
+  const size_t loops = topology.boundaryLoops.size();
+  if (topology.components != 1)
+  {
+    msg << "the surface has " << topology.components
+        << " connected components; the sphere needs exactly 1 (one closed surface of genus 0)";
+  }
+  else if (loops > 0)
+  {
+    msg << "the surface has " << loops << " boundary loop" << (loops > 1 ? "s" : "")
+        << "; the sphere needs a closed surface (use the Disk domain)";
+  }
+  else if (euler != 2)
+  {
+    msg << "the closed surface has genus " << (2 - euler) / 2 << " (Euler characteristic " << euler
+        << "); the sphere needs genus 0 (Euler characteristic 2)";
+  }
+  return msg.str();
+}
+
 } // namespace otparam

@@ -61,6 +61,12 @@ std::string analyzeSurface(const SurfaceMesh& mesh, SurfaceTopology& topology,
 std::string checkDiskTopology(const SurfaceMesh& mesh, std::vector<int>& boundaryLoop,
   const std::vector<std::int64_t>* reportedIds = nullptr);
 
+// A closed surface of genus 0, the sphere's domain (sphere.md): what analyzeSurface checks,
+// connected, no boundary loop, Euler characteristic 2. Returns "" when it is one, else a
+// message that says what is wrong (the number of components, boundary loops or the genus).
+std::string checkSphereTopology(
+  const SurfaceMesh& mesh, const std::vector<std::int64_t>* reportedIds = nullptr);
+
 double triangleArea(const SurfaceMesh& mesh, const Triangle& t);
 
 } // namespace otparam

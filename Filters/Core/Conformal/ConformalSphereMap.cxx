@@ -1,0 +1,644 @@
+// The method, and why it is this one.
+//
+// Two linear passes in the manner of FLASH (Choi, Lam, Lui, SIAM J. Imaging Sci. 2015), with
+// the first pass of Angenent et al. / Haker et al. (2000), then a Moebius balancing:
+//  1. North pass: solve the cotangent Laplace equation with a point dipole in one triangle
+//     (the puncture) as its source: the continuous solution is the conformal map onto the
+//     plane that sends the dipole's point to infinity (z ~ 1 / w near it). FLASH pins the
+//     puncture's three corners to a similar triangle instead; three pinned values are three
+//     charges whose far field is conformal only if that guessed image triangle is exactly
+//     right, and otherwise carries an anti-conformal part that does not shrink under
+//     refinement (crowded round sphere, 6000 and 24000 points: 0.04 from a rotation with
+//     pinned corners, 0.0022 and 0.0006 with the dipole). The dipole's weak form has the exact
+//     moment, so its defect is local. Inverse stereographic projection puts the puncture at
+//     the north pole.
+//  2. Balance the first-pass image roughly (Moebius, see 4), so that "far from the puncture"
+//     means the same on every surface.
+//  3. South pass: keep the fraction `fixedFraction` of points farthest from the puncture fixed,
+//     project stereographically from the antipode of the puncture and solve the cotangent
+//     Laplace equation again for the rest, with the fixed points as Dirichlet values: the
+//     puncture's triangles become ordinary interior triangles. This is FLASH's quasi-conformal
+//     correction in its plainest form (its Beltrami solve, with the Beltrami coefficient of
+//     the current map against the surface, is the surface's own Laplace equation written in
+//     the current coordinates). A smaller fixed region leaves less of the first pass in the
+//     result: 5% (FLASH: 10%) measured best (brain 1.233 / spot 2.927 degrees; 10%: 1.240 /
+//     2.919; 1%: 1.231 / 3.011 with a worse maximum; crowded sphere 0.019 / 0.026 / 0.041).
+//  4. Moebius balancing: Newton's method on the hyperbolic translation f_c (c in the open unit
+//     ball, f_c(c) = 0) that moves the centre of mass of the pushed-forward surface area to the
+//     origin (Baden, Crane, Kazhdan 2018): to first order f_c moves the centre by
+//     -2 (I - M2) c, M2 the second moment, so c = (I - M2)^-1 m / 2, with backtracking.
+// Why not the alternatives: a genus-0 discrete Ricci flow or CETM needs a Newton solve with
+// intrinsic re-triangulation; a conformal disk map of the punctured surface (ConformalDiskMap)
+// needs ~10 boundary iterations where one harmonic solve does; the sphere's nonlinear
+// (tangential) Laplacian flows need many iterations. Two factorizations of a graph Laplacian
+// are linear-time in practice.
+//
+// Orientation: the map is made orientation-consistent for the triangles as given (every
+// triangle counter-clockwise seen from outside, det(a, b, c) > 0), whatever way the surface's
+// triangles face; the solve fixes nothing about the sign, so the whole image is mirrored when
+// the signed image volume comes out negative. `mirrored` reports a surface whose triangles
+// face inward (negative enclosed volume), whose map is then the mirror image of the surface.
+#include "Conformal/ConformalSphereMap.h"
+
+#include "Conformal/CotangentLaplacian.h"
+
+#include "Mesh/DistortionMetrics.h"
+#include "Mesh/IntrinsicDelaunay.h"
+
+#include "Common/SparseCholesky.h"
+#include "Common/SphericalGeometry.h"
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <complex>
+#include <limits>
+#include <numeric>
+#include <sstream>
+
+namespace otparam
+{
+namespace
+{
+using Clock = std::chrono::steady_clock;
+using SparseMatrix = Eigen::SparseMatrix<double>;
+using Complex = std::complex<double>;
+
+double secondsSince(Clock::time_point t0)
+{
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+Eigen::Vector3d toEigen(Vec3 v)
+{
+  return { v.x, v.y, v.z };
+}
+
+Vec3 fromEigen(const Eigen::Vector3d& v)
+{
+  return { v[0], v[1], v[2] };
+}
+
+// The harmonic extension: L_FF X_F = source_F - L_FB X_B for the free rows F (fixed[v] == 0),
+// the fixed rows of X given; both columns at once. False when the factorization fails or the
+// solution is not finite.
+bool solveDirichlet(const SparseMatrix& L, const std::vector<char>& fixed, Eigen::MatrixXd& X,
+  const Eigen::MatrixXd* source = nullptr)
+{
+  const int n = static_cast<int>(L.rows());
+  std::vector<int> local(n, -1);
+  int nf = 0;
+  for (int v = 0; v < n; ++v)
+  {
+    local[v] = fixed[v] ? -1 : nf++;
+  }
+  std::vector<Eigen::Triplet<double>> lower;
+  lower.reserve(L.nonZeros() / 2 + n);
+  Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(nf, 2);
+  if (source)
+  {
+    for (int v = 0; v < n; ++v)
+    {
+      if (!fixed[v])
+      {
+        rhs.row(local[v]) = source->row(v);
+      }
+    }
+  }
+  for (int col = 0; col < n; ++col)
+  {
+    for (SparseMatrix::InnerIterator it(L, col); it; ++it)
+    {
+      const int row = static_cast<int>(it.row());
+      if (fixed[row])
+      {
+        continue;
+      }
+      if (!fixed[col])
+      {
+        if (row >= col) // local numbering keeps the order: this is the lower triangle
+        {
+          lower.emplace_back(local[row], local[col], it.value());
+        }
+      }
+      else
+      {
+        rhs.row(local[row]) -= it.value() * X.row(col);
+      }
+    }
+  }
+  if (!rhs.allFinite())
+  {
+    return false;
+  }
+  SparseMatrix LFF(nf, nf);
+  LFF.setFromTriplets(lower.begin(), lower.end());
+  SparseCholesky cholesky;
+  if (!cholesky.compute(LFF))
+  {
+    return false;
+  }
+  const Eigen::MatrixXd solution = cholesky.solve(rhs);
+  if (!solution.allFinite())
+  {
+    return false;
+  }
+  for (int v = 0; v < n; ++v)
+  {
+    if (!fixed[v])
+    {
+      X.row(v) = solution.row(local[v]);
+    }
+  }
+  return true;
+}
+
+// The most nearly equilateral triangle (FLASH's choice of puncture; the dipole's local defect
+// is smallest on a well-shaped triangle).
+int mostRegularTriangle(const SurfaceMesh& mesh)
+{
+  int best = 0;
+  double bestScore = std::numeric_limits<double>::infinity();
+  for (size_t t = 0; t < mesh.triangles.size(); ++t)
+  {
+    const auto& tri = mesh.triangles[t];
+    const double a = norm(mesh.points[tri[1]] - mesh.points[tri[2]]);
+    const double b = norm(mesh.points[tri[2]] - mesh.points[tri[0]]);
+    const double c = norm(mesh.points[tri[0]] - mesh.points[tri[1]]);
+    const double s = a + b + c;
+    const double score =
+      std::abs(a / s - 1.0 / 3.0) + std::abs(b / s - 1.0 / 3.0) + std::abs(c / s - 1.0 / 3.0);
+    if (score < bestScore)
+    {
+      bestScore = score;
+      best = static_cast<int>(t);
+    }
+  }
+  return best;
+}
+
+// Inverse stereographic projection from the north pole: z = infinity is (0, 0, 1).
+Vec3 inverseStereographic(Complex z)
+{
+  const double s = std::norm(z);
+  if (!std::isfinite(s))
+  {
+    return { 0.0, 0.0, 1.0 };
+  }
+  return { 2.0 * z.real() / (1.0 + s), 2.0 * z.imag() / (1.0 + s), (s - 1.0) / (1.0 + s) };
+}
+
+// The hyperbolic translation of the ball that sends c (|c| < 1) to 0, on a unit vector.
+Vec3 moebiusTranslation(Vec3 x, Vec3 c)
+{
+  const Vec3 d = x - c;
+  const Vec3 y = ((1.0 - dot(c, c)) / dot(d, d)) * d - c;
+  return normalized(y);
+}
+
+// Centre of mass and second moment of the pushed-forward measure: weight[t] (summing to 1)
+// spread uniformly over the spherical image of triangle t.
+void momentsOf(const std::vector<Triangle>& triangles, const std::vector<double>& weight,
+  const std::vector<Vec3>& sphere, Eigen::Vector3d& centre, Eigen::Matrix3d* second)
+{
+  centre.setZero();
+  if (second)
+  {
+    second->setZero();
+  }
+  std::vector<Vec3> polygon(3);
+  for (size_t t = 0; t < triangles.size(); ++t)
+  {
+    if (weight[t] == 0.0)
+    {
+      continue;
+    }
+    const auto& tri = triangles[t];
+    for (int k = 0; k < 3; ++k)
+    {
+      polygon[k] = sphere[tri[k]];
+    }
+    const double area = sphericalTriangleArea(polygon[0], polygon[1], polygon[2]);
+    // The exact mean of x over the image triangle; for tiny (or flipped) images the normalized
+    // centroid, which differs by O(area) and avoids the moment's cancellation.
+    const Vec3 mean = area > 1e-10 ? (1.0 / area) * sphericalPolygonMoment(polygon)
+                                   : normalized(polygon[0] + polygon[1] + polygon[2]);
+    const Eigen::Vector3d x = toEigen(mean);
+    centre += weight[t] * x;
+    if (second)
+    {
+      *second += weight[t] * x * x.transpose();
+    }
+  }
+}
+
+struct BalanceOutcome
+{
+  int iterations = 0;
+  double residual = 0.0;
+};
+
+// Moebius maps applied to `sphere` (and to `tracked`) until the pushed-forward centre of mass
+// is below `tolerance`.
+BalanceOutcome balance(const std::vector<Triangle>& triangles, const std::vector<double>& weight,
+  std::vector<Vec3>& sphere, Vec3& tracked, double tolerance, int maximumIterations)
+{
+  BalanceOutcome outcome;
+  Eigen::Vector3d m;
+  Eigen::Matrix3d M2;
+  momentsOf(triangles, weight, sphere, m, &M2);
+  std::vector<Vec3> trial(sphere.size());
+  for (; outcome.iterations < maximumIterations && m.norm() > tolerance; ++outcome.iterations)
+  {
+    Eigen::Vector3d c =
+      0.5 * (Eigen::Matrix3d::Identity() - M2).ldlt().solve(m); // I - M2 is positive definite
+    // Large steps leave the region where the linear model holds: |c| <= 1/2 moves a point by
+    // at most a factor 3 in scale.
+    if (c.norm() > 0.5)
+    {
+      c *= 0.5 / c.norm();
+    }
+    bool accepted = false;
+    Eigen::Vector3d trialCentre;
+    Eigen::Matrix3d trialSecond;
+    for (int halving = 0; halving < 30 && !accepted; ++halving, c *= 0.5)
+    {
+      const Vec3 cv = fromEigen(c);
+      for (size_t v = 0; v < sphere.size(); ++v)
+      {
+        trial[v] = moebiusTranslation(sphere[v], cv);
+      }
+      momentsOf(triangles, weight, trial, trialCentre, &trialSecond);
+      accepted = trialCentre.norm() < m.norm();
+      if (accepted)
+      {
+        tracked = moebiusTranslation(tracked, cv);
+      }
+    }
+    if (!accepted)
+    {
+      break; // no Moebius step lowers the offset: it is at rounding level
+    }
+    sphere.swap(trial);
+    m = trialCentre;
+    M2 = trialSecond;
+  }
+  outcome.residual = m.norm();
+  return outcome;
+}
+
+std::vector<double> areaWeights(const SurfaceMesh& mesh)
+{
+  std::vector<double> weight(mesh.triangles.size());
+  double total = 0.0;
+  for (size_t t = 0; t < mesh.triangles.size(); ++t)
+  {
+    weight[t] = triangleArea(mesh, mesh.triangles[t]);
+    total += weight[t];
+  }
+  for (double& w : weight)
+  {
+    w /= total;
+  }
+  return weight;
+}
+
+double signedVolume(const std::vector<Vec3>& points, const std::vector<Triangle>& triangles)
+{
+  double volume = 0.0;
+  for (const Triangle& t : triangles)
+  {
+    volume += dot(points[t[0]], cross(points[t[1]], points[t[2]]));
+  }
+  return volume / 6.0;
+}
+
+std::string checkOptions(const ConformalSphereMapOptions& options, const SurfaceMesh& mesh)
+{
+  std::ostringstream msg;
+  const auto nt = static_cast<long long>(mesh.triangles.size());
+  const auto nv = static_cast<long long>(mesh.points.size());
+  if (options.punctureTriangle < -1 || options.punctureTriangle >= nt)
+  {
+    msg << "the puncture triangle " << options.punctureTriangle << " is not a triangle id in [0, "
+        << nt << ")";
+  }
+  else if (!(options.fixedFraction > 0.0 && options.fixedFraction < 1.0))
+  {
+    msg << "the fixed fraction must lie strictly between 0 and 1; got " << options.fixedFraction;
+  }
+  else if (!(options.balanceTolerance > 0.0) || options.maximumBalanceIterations < 0)
+  {
+    msg << "the balance tolerance must be positive and the iteration count non-negative";
+  }
+  // A closed triangle surface of genus 0 has V - 3F/2 + F = 2 (checkSphereTopology says more).
+  else if (nv < 4 || 2 * nv - nt != 4)
+  {
+    msg << "the surface is not a closed genus-0 triangle surface (" << nv << " points, " << nt
+        << " triangles; a sphere has 2 + triangles / 2 points): run checkSphereTopology first";
+  }
+  return msg.str();
+}
+
+ConformalSphereMapResult computeWithLaplacian(
+  const SurfaceMesh& mesh, const ConformalSphereMapOptions& options, bool intrinsicLaplacian)
+{
+  ConformalSphereMapResult result;
+  auto keepGoing = [&](double fraction)
+  {
+    result.status.aborted = options.progress && !options.progress(fraction);
+    return !result.status.aborted;
+  };
+  const int nv = static_cast<int>(mesh.points.size());
+  const size_t nt = mesh.triangles.size();
+
+  auto t0 = Clock::now();
+  std::vector<std::array<double, 3>> lengths(nt);
+  for (size_t t = 0; t < nt; ++t)
+  {
+    const auto& tri = mesh.triangles[t];
+    for (int k = 0; k < 3; ++k)
+    {
+      lengths[t][k] = norm(mesh.points[tri[(k + 1) % 3]] - mesh.points[tri[(k + 2) % 3]]);
+    }
+  }
+  const IntrinsicTriangulation triangulation = intrinsicLaplacian
+    ? intrinsicDelaunay(mesh.triangles, lengths)
+    : IntrinsicTriangulation{ mesh.triangles, lengths, 0 };
+  result.intrinsicFlips = triangulation.flips;
+  const SparseMatrix L = cotangentLaplacian(triangulation, nv);
+  const char* factorError =
+    "the cotangent Laplacian could not be factored (degenerate or badly shaped triangles?)";
+
+  // 1. North pass: L z = the discrete dipole at the puncture's centroid, whose continuous
+  // solution is 1 / w (w a complex coordinate of the triangle's plane): in weak form, corner k
+  // gets 2 pi (d/dx - i d/dy) of its hat function (constant factors dropped: the scale is
+  // fixed below).
+  result.punctureTriangle =
+    options.punctureTriangle >= 0 ? options.punctureTriangle : mostRegularTriangle(mesh);
+  const Triangle puncture = mesh.triangles[result.punctureTriangle];
+  std::vector<char> fixed(nv, 0);
+  Eigen::MatrixXd X = Eigen::MatrixXd::Zero(nv, 2);
+  Eigen::MatrixXd dipole = Eigen::MatrixXd::Zero(nv, 2);
+  {
+    const Vec3 A = mesh.points[puncture[0]], B = mesh.points[puncture[1]],
+               C = mesh.points[puncture[2]];
+    const Vec3 normal = normalized(cross(B - A, C - A));
+    const Vec3 e1 = normalized(B - A), e2 = cross(normal, e1);
+    // Hat-function gradients up to the common factor 1 / (2 area): normal x opposite edge.
+    const Vec3 gradient[3] = { cross(normal, C - B), cross(normal, A - C), cross(normal, B - A) };
+    for (int k = 0; k < 3; ++k)
+    {
+      dipole.row(puncture[k]) << dot(gradient[k], e1), -dot(gradient[k], e2);
+    }
+    // The Neumann problem's gauge: one point pinned at 0, any point off the puncture (the
+    // source sums to zero, so the dropped equation holds by itself).
+    int gauge = 0;
+    while (gauge == puncture[0] || gauge == puncture[1] || gauge == puncture[2])
+    {
+      ++gauge;
+    }
+    fixed[gauge] = 1;
+  }
+  if (!solveDirichlet(L, fixed, X, &dipole))
+  {
+    result.status.error = factorError;
+    return result;
+  }
+  result.secondsFactorization = secondsSince(t0);
+  if (!keepGoing(0.3))
+  {
+    return result;
+  }
+
+  t0 = Clock::now();
+  std::vector<Complex> z(nv);
+  Complex mean = 0.0;
+  for (int v = 0; v < nv; ++v)
+  {
+    z[v] = Complex(X(v, 0), X(v, 1));
+    mean += z[v] / static_cast<double>(nv);
+  }
+  for (Complex& w : z)
+  {
+    w -= mean;
+  }
+  // Scale so that the puncture (near infinity) and the triangle nearest 0 have comparable
+  // sizes on the sphere, as FLASH does: else the far side of the surface can sit in a speck
+  // around the south pole whose shape double precision barely resolves.
+  {
+    auto side = [&](const Triangle& t, auto coordinate)
+    {
+      return (std::abs(coordinate(t[0]) - coordinate(t[1])) +
+               std::abs(coordinate(t[1]) - coordinate(t[2])) +
+               std::abs(coordinate(t[2]) - coordinate(t[0]))) /
+        3.0;
+    };
+    int inner = -1;
+    double innerSize = std::numeric_limits<double>::infinity();
+    for (size_t t = 0; t < nt; ++t)
+    {
+      const auto& tri = mesh.triangles[t];
+      const double size = std::abs(z[tri[0]]) + std::abs(z[tri[1]]) + std::abs(z[tri[2]]);
+      if (static_cast<int>(t) != result.punctureTriangle && size < innerSize)
+      {
+        innerSize = size;
+        inner = static_cast<int>(t);
+      }
+    }
+    const double north = side(puncture, [&](int v) { return z[v]; });
+    const double south = side(mesh.triangles[inner], [&](int v) { return 1.0 / std::conj(z[v]); });
+    const double scale = std::sqrt(south / north);
+    if (std::isfinite(scale) && scale > 0.0)
+    {
+      for (Complex& w : z)
+      {
+        w *= scale;
+      }
+    }
+  }
+  std::vector<Vec3> sphere(nv);
+  for (int v = 0; v < nv; ++v)
+  {
+    sphere[v] = inverseStereographic(z[v]);
+  }
+
+  // 2. Balance the first pass (the puncture's own image is the complement of a triangle: left
+  // out), tracking the image of the north pole, the puncture's direction.
+  std::vector<double> weight = areaWeights(mesh);
+  Vec3 north{ 0.0, 0.0, 1.0 };
+  {
+    std::vector<double> firstWeight = weight;
+    firstWeight[result.punctureTriangle] = 0.0;
+    // Roughly: it only chooses the second pass's pole and fixed points.
+    balance(mesh.triangles, firstWeight, sphere, north, 1e-3, 50);
+  }
+  if (!keepGoing(0.4))
+  {
+    return result;
+  }
+  result.secondsSolve = secondsSince(t0);
+
+  // 3. South pass: the points farthest from the puncture stay, the rest is solved again in the
+  // stereographic plane of the puncture's antipode.
+  t0 = Clock::now();
+  north = normalized(north);
+  const Vec3 helper = std::abs(north.x) < 0.6 ? Vec3{ 1.0, 0.0, 0.0 } : Vec3{ 0.0, 1.0, 0.0 };
+  const Vec3 e1 = normalized(cross(helper, north));
+  const Vec3 e2 = cross(north, e1);
+  std::vector<double> height(nv);
+  for (int v = 0; v < nv; ++v)
+  {
+    height[v] = dot(sphere[v], north);
+  }
+  // The puncture's corners are always solved again (on a tiny surface they would otherwise be
+  // among the "farthest" points), and at least one point stays fixed.
+  std::vector<int> order;
+  for (int v = 0; v < nv; ++v)
+  {
+    if (v != puncture[0] && v != puncture[1] && v != puncture[2])
+    {
+      order.push_back(v);
+    }
+  }
+  // A harmonic extension needs boundary values around the free region: at least 3 fixed
+  // points (with 1, the extension is constant). Below 6 points the first pass stands alone.
+  result.fixedPoints =
+    nv < 6 ? 0 : std::clamp(static_cast<int>(std::lround(options.fixedFraction * nv)), 3, nv - 3);
+  std::nth_element(order.begin(), order.begin() + std::max(0, result.fixedPoints - 1), order.end(),
+    [&](int a, int b) { return height[a] < height[b]; });
+  std::fill(fixed.begin(), fixed.end(), 0);
+  for (int i = 0; i < result.fixedPoints; ++i)
+  {
+    fixed[order[i]] = 1;
+  }
+  for (int v = 0; v < nv; ++v)
+  {
+    // 1 + x.n = |x + n|^2 / 2 keeps its precision near the projection's pole -n.
+    const Vec3 s = sphere[v] + north;
+    const double denominator = 0.5 * dot(s, s);
+    X(v, 0) = dot(sphere[v], e1) / denominator;
+    X(v, 1) = dot(sphere[v], e2) / denominator;
+  }
+  if (result.fixedPoints > 0 && !solveDirichlet(L, fixed, X))
+  {
+    result.status.error = factorError;
+    return result;
+  }
+  for (int v = 0; v < nv && result.fixedPoints > 0; ++v)
+  {
+    if (!fixed[v])
+    {
+      const double u = X(v, 0), w = X(v, 1), s = u * u + w * w;
+      sphere[v] = normalized(
+        (2.0 * u / (1.0 + s)) * e1 + (2.0 * w / (1.0 + s)) * e2 + ((1.0 - s) / (1.0 + s)) * north);
+    }
+  }
+  result.secondsFactorization += secondsSince(t0);
+  if (!keepGoing(0.7))
+  {
+    return result;
+  }
+
+  // 4. Orientation, then the final balancing.
+  t0 = Clock::now();
+  if (signedVolume(sphere, mesh.triangles) < 0.0)
+  {
+    for (Vec3& p : sphere)
+    {
+      p.y = -p.y;
+    }
+  }
+  result.mirrored = signedVolume(mesh.points, mesh.triangles) < 0.0;
+  const BalanceOutcome outcome = balance(mesh.triangles, weight, sphere, north,
+    options.balanceTolerance, options.maximumBalanceIterations);
+  result.balanceIterations = outcome.iterations;
+  result.balanceResidual = outcome.residual;
+  if (outcome.residual > 1e-6)
+  {
+    std::ostringstream msg;
+    msg << "the Moebius balancing stopped with the area's centre of mass at " << outcome.residual
+        << " from the origin (asked: " << options.balanceTolerance << ")";
+    result.status.warnings.push_back(msg.str());
+  }
+  result.secondsBalance = secondsSince(t0);
+  for (const Vec3& p : sphere)
+  {
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+    {
+      result.status.error = "the spherical conformal map has non-finite coordinates (the "
+                            "cotangent Laplacian is too ill-conditioned on this surface)";
+      return result;
+    }
+  }
+  result.sphere = std::move(sphere);
+  const DistortionFigures figures = measureSphereDistortion(mesh, result.sphere);
+  result.flippedTriangles = figures.flippedTriangles;
+  result.meanAngleDistortionDegrees = figures.meanAngleDistortionDegrees;
+  result.maximumAngleDistortionDegrees = figures.maximumAngleDistortionDegrees;
+  keepGoing(1.0);
+  return result;
+}
+} // namespace
+
+Vec3 pushedAreaCentre(const SurfaceMesh& mesh, const std::vector<Vec3>& sphere)
+{
+  Eigen::Vector3d centre;
+  momentsOf(mesh.triangles, areaWeights(mesh), sphere, centre, nullptr);
+  return fromEigen(centre);
+}
+
+// As in the disk map: the mesh's own cotangent Laplacian is the most faithful to its triangles
+// but can fold across obtuse ones (negative weights); the intrinsic Delaunay Laplacian cannot,
+// so it is the fallback, kept when it flips fewer triangles.
+ConformalSphereMapResult computeConformalSphereMap(
+  const SurfaceMesh& mesh, const ConformalSphereMapOptions& options)
+{
+  ConformalSphereMapResult result;
+  result.status.error = checkOptions(options, mesh);
+  if (!result.status.error.empty())
+  {
+    return result;
+  }
+  result = computeWithLaplacian(mesh, options, options.intrinsicLaplacian);
+  result.intrinsicLaplacian = options.intrinsicLaplacian;
+  if (!result.status.ok() || options.intrinsicLaplacian)
+  {
+    return result;
+  }
+  result.flippedWithMeshLaplacian = result.flippedTriangles;
+  if (result.flippedTriangles == 0)
+  {
+    return result;
+  }
+  ConformalSphereMapOptions again = options;
+  if (options.progress)
+  {
+    // Progress already reached 1: the second solve only checks for an abort.
+    again.progress = [&options](double) { return options.progress(1.0); };
+  }
+  ConformalSphereMapResult intrinsic = computeWithLaplacian(mesh, again, true);
+  if (intrinsic.status.aborted ||
+    (intrinsic.status.error.empty() && intrinsic.flippedTriangles < result.flippedTriangles))
+  {
+    intrinsic.intrinsicLaplacian = true;
+    intrinsic.flippedWithMeshLaplacian = result.flippedWithMeshLaplacian;
+    intrinsic.secondsFactorization += result.secondsFactorization;
+    intrinsic.secondsSolve += result.secondsSolve;
+    intrinsic.secondsBalance += result.secondsBalance;
+    result = std::move(intrinsic);
+  }
+  if (result.status.ok() && result.flippedTriangles > 0)
+  {
+    std::ostringstream msg;
+    msg << result.flippedTriangles
+        << " triangle(s) are flipped on the sphere (clockwise seen from outside) with both the "
+           "mesh's and the intrinsic Delaunay cotangent Laplacian";
+    result.status.warnings.push_back(msg.str());
+  }
+  return result;
+}
+
+} // namespace otparam
