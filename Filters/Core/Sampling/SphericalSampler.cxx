@@ -1,0 +1,689 @@
+// Delaunay refinement of the unit sphere graded by a density (method.md, Algorithm 2, carried to
+// S^2 as sphere.md asks), on CGAL's Delaunay_triangulation_on_sphere_2: its triangulation is the
+// convex hull of the samples, and it inserts one point at a time from a nearby face, which the
+// worst-first refinement needs. There is no boundary on the sphere, so Chew/Ruppert's rule is
+// plain: take the worst triangle (too large: nu-length of its circumradius above eps; or too
+// thin: smallest angle below the bound) and insert its circumcentre on the sphere. With a bound
+// of 30 degrees this terminates: the circumcentre is at least the circumradius, hence at least
+// the shortest edge of a thin triangle, away from every sample.
+// Then, as on the plane, Lloyd steps for the density g^2 (a centroidal tessellation for g^2 has
+// cells of equal g-mass) even the masses out, and a last angles-only refinement repairs the
+// few thin triangles they leave.
+#include "Sampling/SphericalSampler.h"
+
+#include "Common/SphericalGeometry.h"
+#include "Sampling/SphericalDensityField.h"
+#include "Transport/SphericalPowerDiagram.h"
+
+#include <CGAL/Delaunay_triangulation_on_sphere_2.h>
+#include <CGAL/Delaunay_triangulation_on_sphere_traits_2.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_face_base_with_info_2.h>
+#include <CGAL/Triangulation_on_sphere_face_base_2.h>
+#include <CGAL/Triangulation_on_sphere_vertex_base_2.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <functional>
+#include <limits>
+#include <map>
+#include <numeric>
+#include <queue>
+#include <tuple>
+#include <unordered_map>
+
+namespace otparam
+{
+namespace
+{
+constexpr double Pi = 3.14159265358979323846;
+constexpr int RelaxationSteps = 4;
+using Clock = std::chrono::steady_clock;
+
+struct VertexInfo
+{
+  double g = 1.0; // density at the sample
+  int hint = -1;  // density triangle containing it
+};
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Gt = CGAL::Delaunay_triangulation_on_sphere_traits_2<K>;
+using Vb = CGAL::Triangulation_vertex_base_with_info_2<VertexInfo, Gt,
+  CGAL::Triangulation_on_sphere_vertex_base_2<Gt>>;
+using Fb =
+  CGAL::Triangulation_face_base_with_info_2<int, Gt, CGAL::Triangulation_on_sphere_face_base_2<Gt>>;
+using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
+using DT = CGAL::Delaunay_triangulation_on_sphere_2<Gt, Tds>;
+using FaceHandle = DT::Face_handle;
+using VertexHandle = DT::Vertex_handle;
+
+double secondsSince(Clock::time_point t0)
+{
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+Vec3 toVec(const K::Point_3& p)
+{
+  return { p.x(), p.y(), p.z() };
+}
+
+Vec3 pointOf(FaceHandle f, int k)
+{
+  return toVec(f->vertex(k)->point());
+}
+
+// The circumcentre on the sphere of a triangle counter-clockwise seen from outside: the unit
+// normal of its plane (differences keep it accurate for tiny triangles).
+Vec3 circumcentre(Vec3 a, Vec3 b, Vec3 c)
+{
+  return normalized(cross(b - a, c - a));
+}
+
+// The 12 vertices of the icosahedron: the well-spread start of every refinement.
+std::vector<Vec3> icosahedron()
+{
+  const double t = (1.0 + std::sqrt(5.0)) / 2.0;
+  std::vector<Vec3> v;
+  for (double s : { -1.0, 1.0 })
+  {
+    for (double r : { -t, t })
+    {
+      v.push_back(normalized({ 0.0, s, r }));
+      v.push_back(normalized({ s, r, 0.0 }));
+      v.push_back(normalized({ r, 0.0, s }));
+    }
+  }
+  return v;
+}
+
+// Indices of the points in Z order on the cube map (face, then interleaved bits of the two
+// face coordinates): consecutive insertions are near each other, so each locate is short.
+std::vector<int> spatialOrder(const std::vector<Vec3>& points)
+{
+  std::vector<std::pair<unsigned long long, int>> keys(points.size());
+  for (size_t i = 0; i < points.size(); ++i)
+  {
+    const Vec3 x = points[i];
+    const double ax = std::abs(x.x), ay = std::abs(x.y), az = std::abs(x.z);
+    unsigned long long face;
+    double u, v, w;
+    if (ax >= ay && ax >= az)
+      face = x.x > 0 ? 0 : 1, u = x.y, v = x.z, w = ax;
+    else if (ay >= az)
+      face = x.y > 0 ? 2 : 3, u = x.z, v = x.x, w = ay;
+    else
+      face = x.z > 0 ? 4 : 5, u = x.x, v = x.y, w = az;
+    const auto q = [w](double c)
+    { return static_cast<unsigned>(std::clamp((c / w + 1.0) * 0.5 * 1048576.0, 0.0, 1048575.0)); };
+    const unsigned qu = q(u), qv = q(v);
+    unsigned long long code = 0;
+    for (int b = 19; b >= 0; --b)
+    {
+      code = (code << 2) | (((qu >> b) & 1u) << 1) | ((qv >> b) & 1u);
+    }
+    keys[i] = { (face << 40) | code, static_cast<int>(i) };
+  }
+  std::sort(keys.begin(), keys.end());
+  std::vector<int> order;
+  for (const auto& k : keys)
+  {
+    order.push_back(k.second);
+  }
+  return order;
+}
+
+// nu-length of a length 1 where the density is g.
+struct Grading
+{
+  bool graded;
+  SizeRule rule;
+  double operator()(double g) const
+  {
+    return !graded ? 1.0 : rule == SizeRule::SqrtDensity ? std::sqrt(g) : g;
+  }
+};
+
+class Refinement
+{
+public:
+  Refinement(const SphericalDensityField& field, const SamplerOptions& options, double epsilon)
+    : Field(field)
+    , Grade{ options.mode == SamplingMode::Adaptive, options.sizeRule }
+    , Epsilon(epsilon)
+    , SinMinimumAngle(std::sin(options.minimumAngleDegrees * Pi / 180.0))
+    , Cap(options.maximumNumberOfSamples)
+  {
+  }
+
+  // Inserts the seeds (with their density triangles when known), then refines until no
+  // triangle is too large or too thin. Returns false when aborted.
+  bool run(const std::vector<Vec3>& seeds, const std::vector<int>& hints,
+    const std::function<bool(long long)>& keepGoing)
+  {
+    FaceHandle near;
+    for (int i : spatialOrder(seeds))
+    {
+      const VertexHandle v = insert(seeds[i], near, hints.empty() ? -1 : hints[i]);
+      near = v != VertexHandle() ? v->face() : near;
+    }
+    for (auto f = Triangulation.all_faces_begin(); f != Triangulation.all_faces_end(); ++f)
+    {
+      consider(f);
+    }
+    long long insertions = 0;
+    while (!Queue.empty())
+    {
+      if (static_cast<long long>(Triangulation.number_of_vertices()) >= Cap)
+      {
+        Capped = true;
+        break;
+      }
+      const Entry entry = Queue.top();
+      Queue.pop();
+      const FaceHandle f = entry.face;
+      // Faces die on insertion and their storage is reused. A dead face keeps its vertices
+      // (CGAL keeps its free list in neighbour 0), so liveness is asked of the container; a
+      // reused slot is ours when it has the same three vertices.
+      if (!Triangulation.tds().faces().is_used(f) || f->vertex(0) != entry.v[0] ||
+        f->vertex(1) != entry.v[1] || f->vertex(2) != entry.v[2])
+      {
+        continue;
+      }
+      refine(f);
+      if (++insertions % 4096 == 0 && !keepGoing(Triangulation.number_of_vertices()))
+      {
+        return false;
+      }
+    }
+    return true;
+  }
+
+  DT& triangulation() { return Triangulation; } // diagramOf numbers its faces
+  bool capped() const { return Capped; }
+
+private:
+  struct Entry
+  {
+    double priority;
+    FaceHandle face;
+    std::array<VertexHandle, 3> v;
+    bool operator<(const Entry& other) const { return priority < other.priority; }
+  };
+
+  bool needsDensity() const { return Grade.graded && std::isfinite(Epsilon); }
+
+  // Null when CGAL refuses the point (closer than 2^-23 to a sample: it returns that sample).
+  VertexHandle insert(Vec3 p, FaceHandle near, int hint)
+  {
+    const auto before = Triangulation.number_of_vertices();
+    const VertexHandle v = Triangulation.insert(K::Point_3(p.x, p.y, p.z), near);
+    if (v == VertexHandle() || Triangulation.number_of_vertices() == before)
+    {
+      return VertexHandle();
+    }
+    if (needsDensity())
+    {
+      v->info().hint = Field.locate(p, hint);
+      v->info().g = Field.density()[v->info().hint];
+    }
+    return v;
+  }
+
+  // Pushes the face when it is too large or too thin.
+  void consider(FaceHandle f)
+  {
+    if (Triangulation.is_ghost(f))
+    {
+      return;
+    }
+    const Vec3 a = pointOf(f, 0), b = pointOf(f, 1), c = pointOf(f, 2);
+    const Vec3 normal = cross(b - a, c - a);
+    const double twiceArea = norm(normal);
+    if (!(twiceArea > 0.0))
+    {
+      return;
+    }
+    const Vec3 centre = (1.0 / twiceArea) * normal;
+    const double ab = norm(b - a), bc = norm(c - b), ca = norm(a - c);
+    const double flatRadius = ab * bc * ca / (2.0 * twiceArea);
+    const double shortest = std::min({ ab, bc, ca });
+    double g = 1.0;
+    if (needsDensity())
+    {
+      // The largest of the density at the corners and at the circumcentre: a coarse triangle
+      // over a peak sees it at one of them at least as soon as the peak is between samples.
+      g = std::max({ f->vertex(0)->info().g, f->vertex(1)->info().g, f->vertex(2)->info().g,
+        Field.value(centre, f->vertex(0)->info().hint) });
+    }
+    const double nuRadius = sphericalDistance(centre, a) * Grade(g);
+    const bool tooLarge = nuRadius > Epsilon;
+    const bool tooThin = shortest < 2.0 * flatRadius * SinMinimumAngle * (1.0 - 1e-12);
+    if (tooLarge || tooThin)
+    {
+      Queue.push({ nuRadius, f, { f->vertex(0), f->vertex(1), f->vertex(2) } });
+    }
+  }
+
+  void refine(FaceHandle f)
+  {
+    const Vec3 centre = circumcentre(pointOf(f, 0), pointOf(f, 1), pointOf(f, 2));
+    const VertexHandle v = insert(centre, f, f->vertex(0)->info().hint);
+    if (v == VertexHandle())
+    {
+      return; // refused (too close): the face is left as it is
+    }
+    auto face = Triangulation.incident_faces(v), done = face;
+    do
+    {
+      consider(face);
+    } while (++face != done);
+  }
+
+  const SphericalDensityField& Field;
+  Grading Grade;
+  double Epsilon;
+  double SinMinimumAngle;
+  long long Cap;
+  DT Triangulation;
+  std::priority_queue<Entry> Queue;
+  bool Capped = false;
+};
+
+// Samples, their triangulation and the Voronoi cells, read off a triangulation on the sphere.
+struct Diagram
+{
+  std::vector<Vec3> samples;
+  std::vector<int> hints; // density triangle of each sample (-1: unknown)
+  std::vector<Triangle> triangles;
+  std::vector<std::vector<Vec3>> cells; // counter-clockwise from outside
+};
+
+Diagram diagramOf(DT& dt)
+{
+  Diagram d;
+  std::unordered_map<const void*, int> id;
+  for (auto v = dt.vertices_begin(); v != dt.vertices_end(); ++v)
+  {
+    id[&*v] = static_cast<int>(d.samples.size());
+    d.samples.push_back(toVec(v->point()));
+    d.hints.push_back(v->info().hint);
+  }
+  std::vector<Vec3> centres;
+  for (auto f = dt.all_faces_begin(); f != dt.all_faces_end(); ++f)
+  {
+    f->info() = static_cast<int>(centres.size());
+    centres.push_back(circumcentre(pointOf(f, 0), pointOf(f, 1), pointOf(f, 2)));
+    d.triangles.push_back({ id[&*f->vertex(0)], id[&*f->vertex(1)], id[&*f->vertex(2)] });
+  }
+  // The faces around a vertex circulate counter-clockwise (as the faces are oriented): their
+  // circumcentres are the cell's corners in order.
+  d.cells.resize(d.samples.size());
+  for (auto v = dt.vertices_begin(); v != dt.vertices_end(); ++v)
+  {
+    auto& cell = d.cells[id[&*v]];
+    auto f = dt.incident_faces(v), done = f;
+    do
+    {
+      cell.push_back(centres[f->info()]);
+    } while (++f != done);
+  }
+  return d;
+}
+
+// A fresh triangulation of the points (all of them, unless two are within 2^-23).
+Diagram triangulate(const std::vector<Vec3>& points, const std::vector<int>& hints)
+{
+  DT dt;
+  DT::Face_handle near;
+  for (int i : spatialOrder(points))
+  {
+    const VertexHandle v = dt.insert(K::Point_3(points[i].x, points[i].y, points[i].z), near);
+    if (v != VertexHandle())
+    {
+      v->info().hint = hints.empty() ? -1 : hints[i];
+      near = v->face();
+    }
+  }
+  return diagramOf(dt);
+}
+
+// Integrals of g^power (and of x g^power) over every cell.
+void integrateCells(const SphericalDensityField& field, Diagram& d, double power,
+  std::vector<double>& mass, std::vector<Vec3>* moment)
+{
+  const long long n = static_cast<long long>(d.samples.size());
+  mass.assign(n, 0.0);
+  if (moment)
+  {
+    moment->assign(n, Vec3{});
+  }
+#pragma omp parallel
+  {
+    SphericalDensityField::Scratch scratch;
+#pragma omp for schedule(dynamic, 256)
+    for (long long i = 0; i < n; ++i)
+    {
+      field.integrate(d.cells[i], d.samples[i], d.hints[i], power, scratch, mass[i],
+        moment ? &(*moment)[i] : nullptr);
+    }
+  }
+}
+
+// Relaxation towards equal masses, as on the plane (PlanarSampler.cxx, relax): Lloyd steps for
+// g^power (power 2: a centroidal tessellation for g^2 has cells of equal g-mass to first
+// order; 0: the area) on cells whose heights are steered, one Jacobi step of "every cell has
+// the mean mass" per step (measured on a zonal density of contrast 1e3, 1000 samples: plain
+// Lloyd left a spread of 0.19 after 4 steps and 0.16 after 16, because g varies within a cell).
+// The last step is a plain Lloyd step on the Voronoi cells. Raising psi_i shrinks cell i by
+// about 3.46 times the change over the cell's area (regular hexagons; sphere.md's Hessian).
+constexpr double LargestSteeredMassChange = 0.5;
+constexpr double CellAreaPerHeight = 3.4641016151377544;
+int knob(const char* name, int fallback)
+{
+  const char* v = std::getenv(name);
+  return v ? std::atoi(v) : fallback;
+}
+double knobd(const char* name, double fallback)
+{
+  const char* v = std::getenv(name);
+  return v ? std::atof(v) : fallback;
+}
+void relax(const SphericalDensityField& field, double power, bool equalizeMass, int steeredSteps,
+  int plainSteps, std::vector<Vec3>& samples, std::vector<int>& hints)
+{
+  const long long n = static_cast<long long>(samples.size());
+  std::vector<Height> psi(n, Height(0.0L));
+  SphericalPowerDiagram diagram;
+  std::vector<double> weighted(n), mass(n), area(n);
+  std::vector<Vec3> moment(n);
+  const double gain = knobd("OTP_GAIN", 1.0);
+  for (int step = 0; step < steeredSteps + plainSteps; ++step)
+  {
+    const bool plainStep = step >= steeredSteps;
+    if (plainStep)
+    {
+      psi.assign(n, Height(0.0L));
+    }
+    diagram.build(samples, psi);
+    std::fill(weighted.begin(), weighted.end(), 0.0);
+    std::fill(mass.begin(), mass.end(), 0.0);
+    std::fill(area.begin(), area.end(), 0.0);
+#pragma omp parallel
+    {
+      SphericalDensityField::Scratch scratch;
+      std::vector<Vec3> cell;
+#pragma omp for schedule(dynamic, 256)
+      for (long long i = 0; i < n; ++i)
+      {
+        cell.clear();
+        for (const int* f = diagram.ringBegin(i); f != diagram.ringEnd(i); ++f)
+        {
+          cell.push_back(diagram.cellVertices()[*f]);
+        }
+        moment[i] = Vec3{};
+        if (cell.size() >= 3)
+        {
+          field.integrate(
+            cell, samples[i], hints[i], power, scratch, weighted[i], &moment[i], &mass[i], &area[i]);
+        }
+      }
+    }
+    if (!plainStep)
+    {
+      double total = 0.0;
+      for (long long i = 0; i < n; ++i)
+      {
+        total += equalizeMass ? mass[i] : area[i];
+      }
+      const double mean = total / static_cast<double>(n);
+      for (long long i = 0; i < n; ++i)
+      {
+        const double measured = equalizeMass ? mass[i] : area[i];
+        if (measured > 0.0)
+        {
+          const double change = std::clamp(
+            mean / measured - 1.0, -LargestSteeredMassChange, LargestSteeredMassChange);
+          psi[i] -= gain * change * area[i] / CellAreaPerHeight;
+        }
+        else
+        {
+          psi[i] -= 1e-3; // an empty cell: bring its point back onto the hull
+        }
+      }
+    }
+    for (long long i = 0; i < n; ++i)
+    {
+      if (weighted[i] > 0.0 && norm(moment[i]) > 0.0)
+      {
+        samples[i] = normalized(moment[i]);
+      }
+    }
+  }
+}
+
+double smallestAngleDegrees(const std::vector<Vec3>& p, const std::vector<Triangle>& triangles)
+{
+  // Angles of the flat (hull) triangles: a little below the spherical ones, the conservative
+  // figure.
+  double smallest = 180.0;
+  for (const Triangle& t : triangles)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      const Vec3 a = p[t[k]], b = p[t[(k + 1) % 3]], c = p[t[(k + 2) % 3]];
+      const double angle = std::atan2(norm(cross(b - a, c - a)), dot(b - a, c - a));
+      smallest = std::min(smallest, angle * 180.0 / Pi);
+    }
+  }
+  return smallest;
+}
+
+struct Candidate
+{
+  Diagram diagram;
+  std::vector<double> mass; // unnormalized
+  double cv = std::numeric_limits<double>::infinity();
+  double secondsMasses = 0.0;
+};
+
+Candidate measure(const SphericalDensityField& field, Diagram d)
+{
+  const auto t0 = Clock::now();
+  Candidate c;
+  integrateCells(field, d, 1.0, c.mass, nullptr);
+  c.secondsMasses = secondsSince(t0);
+  c.cv = massCoefficientOfVariation(c.mass);
+  c.diagram = std::move(d);
+  return c;
+}
+
+// The samples after an angles-only refinement pass (relaxation can leave thin triangles).
+Diagram repairAngles(const SphericalDensityField& field, const SamplerOptions& options,
+  const std::vector<Vec3>& samples, const std::vector<int>& hints)
+{
+  Refinement repair(field, options, std::numeric_limits<double>::infinity());
+  repair.run(samples, hints, [](long long) { return true; });
+  return diagramOf(repair.triangulation());
+}
+
+// Adaptive/Uniform: refinement runs calibrated to the target count, Lloyd steps, angle repair;
+// the unrelaxed samples are kept instead when the relaxed masses spread by more than 0.3 and
+// the unrelaxed ones less (as on the plane).
+Candidate sampleRefined(
+  const SphericalDensityField& field, const SamplerOptions& options, SphericalSamplerResult& result)
+{
+  const Grading grade{ options.mode == SamplingMode::Adaptive, options.sizeRule };
+  double gradedArea = 0.0;
+  for (size_t t = 0; t < field.triangles().size(); ++t)
+  {
+    const double s = grade(field.density()[t]);
+    gradedArea += field.sphericalArea(static_cast<int>(t)) * s * s;
+  }
+  std::unique_ptr<Refinement> refinement;
+  const double target = static_cast<double>(options.numberOfSamples);
+  double done = 0.0; // progress: the runs together refine about 2.2 times the target
+  const auto refine = [&](double epsilon, double runTarget) -> double
+  {
+    refinement = std::make_unique<Refinement>(field, options, epsilon);
+    const double share = runTarget / (2.2 * target), start = done;
+    done = std::min(0.9, done + 0.9 * share);
+    const bool finished = refinement->run(icosahedron(), {},
+      [&](long long count)
+      {
+        return !options.progress ||
+          options.progress(std::min(0.9, start + 0.9 * share * count / runTarget));
+      });
+    result.capped = refinement->capped();
+    return finished ? static_cast<double>(refinement->triangulation().number_of_vertices()) : -1.0;
+  };
+  // Tighter than 10%: the angle repair after the relaxation adds a few samples.
+  if (!refineToTargetCount(options, gradedArea, 0.05, refine, result))
+  {
+    return {};
+  }
+  Diagram refined = diagramOf(refinement->triangulation());
+  refinement.reset();
+  double power = 0.0;
+  if (options.mode == SamplingMode::Adaptive)
+  {
+    power = options.sizeRule == SizeRule::SqrtDensity ? 2.0 : 4.0;
+  }
+  std::vector<Vec3> samples = refined.samples;
+  std::vector<int> hints = refined.hints;
+  const bool eq = options.mode == SamplingMode::Adaptive;
+  relax(field, power, eq, knob("OTP_S", 3), knob("OTP_P", 1), samples, hints);
+  for (int round = 0; round < knob("OTP_R", 0); ++round)
+  {
+    Diagram d = repairAngles(field, options, samples, hints);
+    samples = std::move(d.samples);
+    hints = std::move(d.hints);
+    relax(field, power, eq, knob("OTP_RS", 0), knob("OTP_RP", 1), samples, hints);
+  }
+  if (options.progress && !options.progress(0.9))
+  {
+    result.status.aborted = true;
+    return {};
+  }
+  Candidate best = measure(field, repairAngles(field, options, samples, hints));
+  if (knob("OTP_FALLBACK", 1))
+  {
+    Candidate unrepaired = measure(field, triangulate(samples, hints));
+    if (getenv("OTP_VERBOSE")) std::printf("  unrepaired cv %.4f repaired %.4f\n", unrepaired.cv, best.cv);
+    if (unrepaired.cv < best.cv - 0.005)
+    {
+      best = std::move(unrepaired);
+    }
+  }
+  result.relaxed = true;
+  if (options.mode == SamplingMode::Adaptive && best.cv > 0.3)
+  {
+    Candidate unrelaxed = measure(field, std::move(refined));
+    if (unrelaxed.cv < best.cv)
+    {
+      best = std::move(unrelaxed);
+      result.relaxed = false;
+    }
+  }
+  return best;
+}
+
+// MeshVertices: the density mesh's points (input order) with its triangles; the masses of the
+// points' Voronoi cells.
+Candidate sampleMeshVertices(const SphericalDensityField& field, SphericalSamplerResult& result)
+{
+  std::vector<int> hints(field.points().size(), -1);
+  for (size_t t = 0; t < field.triangles().size(); ++t)
+  {
+    for (int v : field.triangles()[t])
+    {
+      hints[v] = static_cast<int>(t);
+    }
+  }
+  Candidate c = measure(field, triangulate(field.points(), hints));
+  if (c.diagram.samples.size() != field.points().size())
+  {
+    result.status.error = "Some points of the density mesh are closer than 1e-7 to each other "
+                          "(or unused): their Voronoi cells cannot be told apart; use the "
+                          "Adaptive or Uniform mode.";
+    return c;
+  }
+  // Back to input order (the triangulation sorted them).
+  {
+    std::map<std::tuple<double, double, double>, int> id;
+    for (size_t i = 0; i < field.points().size(); ++i)
+    {
+      const Vec3 p = field.points()[i];
+      id[{ p.x, p.y, p.z }] = static_cast<int>(i);
+    }
+    std::vector<double> mass(c.mass.size());
+    for (size_t k = 0; k < c.diagram.samples.size(); ++k)
+    {
+      const Vec3 p = c.diagram.samples[k];
+      mass[id.at({ p.x, p.y, p.z })] = c.mass[k];
+    }
+    c.mass = std::move(mass);
+  }
+  c.diagram.samples = field.points();
+  c.diagram.triangles = field.triangles();
+  return c;
+}
+} // namespace
+
+SphericalSamplerResult sampleSphere(const std::vector<Vec3>& spherePoints,
+  const std::vector<Triangle>& triangles, const std::vector<double>& triangleDensity,
+  const SamplerOptions& options)
+{
+  SphericalSamplerResult result;
+  result.status.error = checkSamplerOptions(options);
+  if (!result.status.error.empty())
+  {
+    return result;
+  }
+  std::string error;
+  const auto field = SphericalDensityField::create(spherePoints, triangles, triangleDensity, error);
+  if (!field)
+  {
+    result.status.error = error;
+    return result;
+  }
+  result.densityIntegral = field->integral();
+  const auto t0 = Clock::now();
+  Candidate c = options.mode == SamplingMode::MeshVertices ? sampleMeshVertices(*field, result)
+                                                           : sampleRefined(*field, options, result);
+  if (!result.status.ok())
+  {
+    return result;
+  }
+  result.secondsMasses = c.secondsMasses;
+  result.secondsRefinement = secondsSince(t0) - c.secondsMasses;
+  const double raw = std::accumulate(c.mass.begin(), c.mass.end(), 0.0);
+  result.massSumRelativeError = std::abs(raw - result.densityIntegral) / result.densityIntegral;
+  result.mass.resize(c.mass.size());
+  for (size_t i = 0; i < c.mass.size(); ++i)
+  {
+    result.mass[i] = c.mass[i] * result.sourceMass / raw;
+  }
+  result.massCoefficientOfVariation = massCoefficientOfVariation(result.mass);
+  result.samples = std::move(c.diagram.samples);
+  result.triangles = std::move(c.diagram.triangles);
+  result.minimumAngleDegrees = smallestAngleDegrees(result.samples, result.triangles);
+  if (options.mode != SamplingMode::MeshVertices)
+  {
+    const std::string warning = sampleCountWarning(
+      static_cast<long long>(result.samples.size()), options.numberOfSamples, result.capped);
+    if (!warning.empty())
+    {
+      result.status.warnings.push_back(warning);
+    }
+  }
+  if (options.progress)
+  {
+    options.progress(1.0);
+  }
+  return result;
+}
+
+} // namespace otparam
