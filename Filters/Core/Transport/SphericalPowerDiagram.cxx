@@ -28,20 +28,48 @@ long double heightDifference(const Height& a, const Height& b)
 {
   return a - b;
 }
+
+// A vector in long double: the facet normals are computed in it (see facetNormal).
+struct LongVec3
+{
+  long double x, y, z;
+};
+
+// In long double: expm1 of a height difference of order 1 rounded to double would move the
+// cell boundary by 1e-16 / |y_a - y_b| radians, a relative error of ~1e-9 in the smallest
+// cells of 1e5 Diracs of contrast 1e4.
+LongVec3 longScaledDifference(
+  const Vec3& ya, const Vec3& yb, const Height& psiA, const Height& psiB)
+{
+  const long double e = std::expm1(heightDifference(psiB, psiA));
+  auto component = [e](double a, double b) { return static_cast<long double>(a - b) + e * a; };
+  return { component(ya.x, yb.x), component(ya.y, yb.y), component(ya.z, yb.z) };
+}
 } // namespace
 
 Vec3 scaledDifference(const Vec3& ya, const Vec3& yb, const Height& psiA, const Height& psiB)
 {
-  const double e = static_cast<double>(std::expm1(heightDifference(psiB, psiA)));
-  return (ya - yb) + e * ya;
+  const LongVec3 d = longScaledDifference(ya, yb, psiA, psiB);
+  return { static_cast<double>(d.x), static_cast<double>(d.y), static_cast<double>(d.z) };
 }
 
 Vec3 facetNormal(const Vec3& ya, const Vec3& yb, const Vec3& yc, const Height& psiA,
   const Height& psiB, const Height& psiC)
 {
   // (p_b - p_a) x (p_c - p_a), both differences scaled by e^psi_a (the direction is all that
-  // is needed).
-  return cross(scaledDifference(yb, ya, psiB, psiA), scaledDifference(yc, ya, psiC, psiA));
+  // is needed), normalized. In long double: for a thin hull triangle the cross product of two
+  // nearly parallel edges loses digits in proportion (random Diracs have angles of 1e-3), and
+  // in double that left relative errors of ~1e-9 in the smallest cells at 1e5 Diracs.
+  const LongVec3 u = longScaledDifference(yb, ya, psiB, psiA);
+  const LongVec3 v = longScaledDifference(yc, ya, psiC, psiA);
+  const long double x = u.y * v.z - u.z * v.y, y = u.z * v.x - u.x * v.z, z = u.x * v.y - u.y * v.x;
+  const long double length = std::sqrt(x * x + y * y + z * z);
+  if (!(length > 0.0L))
+  {
+    return {};
+  }
+  return { static_cast<double>(x / length), static_cast<double>(y / length),
+    static_cast<double>(z / length) };
 }
 
 bool SphericalPowerDiagram::build(const std::vector<Vec3>& diracs, const std::vector<Height>& psi)

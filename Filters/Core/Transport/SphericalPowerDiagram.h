@@ -48,9 +48,10 @@ private:
   int HiddenCount = 0;
 };
 
-// The direction (p_b - p_a) x (p_c - p_a) of the hull facet through p = y e^-psi of three
-// Diracs, taken from coordinate differences and expm1 of height differences so that it keeps
-// its relative precision for Diracs very close together and heights very close together.
+// The unit direction of (p_b - p_a) x (p_c - p_a), the outward normal of the hull facet through p =
+// y e^-psi of three Diracs, taken from coordinate differences and expm1 of height differences so
+// that it keeps its relative precision for Diracs very close together and heights very close
+// together.
 Vec3 facetNormal(const Vec3& ya, const Vec3& yb, const Vec3& yc, const Height& psiA,
   const Height& psiB, const Height& psiC);
 
