@@ -17,56 +17,11 @@ namespace
 using namespace composition;
 using Clock = std::chrono::steady_clock;
 
-constexpr double PolishLogRatio = 0.05;
-constexpr int PolishSweeps = 50; // measured on hand_choi_53k: the largest error stops falling there
-
 double seconds(Clock::time_point start)
 {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-// Step 3's sweeps: until the mean |log area ratio| settles, then the polishing of the worst.
-template <typename Report>
-void correctAreas(AreaCorrection& correction, const SurfaceMesh& surface,
-  const std::vector<double>& surfaceFraction, const CompositionOptions& options, Report& report,
-  CompositionResult& result)
-{
-  // The mean is measured every few sweeps only: it costs a logarithm per triangle.
-  constexpr int SweepsPerCheck = 4;
-  for (int sweep = 0; sweep < options.maximumCorrectionSweeps; ++sweep)
-  {
-    const std::int64_t moved = correction.sweep(result.uv);
-    ++result.correctionSweeps;
-    if (moved > 0 && (sweep + 1) % SweepsPerCheck != 0)
-    {
-      continue;
-    }
-    const double mean = meanAbsLogAreaRatio(surface.triangles, result.uv, surfaceFraction);
-    const bool settled = moved == 0 ||
-      result.meanAbsLogAreaRatio - mean <
-        SweepsPerCheck * options.correctionRelativeDecrease * mean;
-    result.meanAbsLogAreaRatio = mean;
-    if (settled ||
-      !report(0.3 + 0.6 * (sweep + 1.0) / std::max(1, options.maximumCorrectionSweeps)))
-    {
-      break;
-    }
-  }
-  // The mean settles long before the worst triangles (the sweeps spread corrections slowly
-  // and the few vertices around an untangled knot need many): sweeps over just the vertices
-  // that still have a triangle off by more than 5% finish them cheaply (hand_choi_53k: the
-  // largest |log area ratio| 3.3 -> 0.6 for 0.3 s).
-  correction.polishFrom(PolishLogRatio);
-  for (int sweep = 0; sweep < std::min(options.maximumCorrectionSweeps, PolishSweeps); ++sweep)
-  {
-    ++result.correctionSweeps;
-    if (correction.sweep(result.uv) == 0)
-    {
-      break;
-    }
-  }
-  result.meanAbsLogAreaRatio = meanAbsLogAreaRatio(surface.triangles, result.uv, surfaceFraction);
-}
 } // namespace
 
 Vec2 boundaryArcMidpoint(const std::vector<Vec2>& cell)
@@ -183,7 +138,11 @@ CompositionResult composeWithInverseTransport(const SurfaceMesh& surface,
   if (options.correctAreas)
   {
     AreaCorrection correction(surface, boundaryLoop, stars, surfaceFraction);
-    correctAreas(correction, surface, surfaceFraction, options, report, result);
+    correctAreas(
+      correction, result.uv, options,
+      [&](const std::vector<Vec2>& uv)
+      { return meanAbsLogAreaRatio(surface.triangles, uv, surfaceFraction); },
+      report, result.correctionSweeps, result.meanAbsLogAreaRatio);
   }
   result.secondsCorrection = seconds(start);
   result.flippedTriangles =

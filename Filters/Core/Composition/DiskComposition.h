@@ -25,6 +25,7 @@
 #define OTPARAM_COMPOSITION_DISKCOMPOSITION_H
 
 #include "Common/Status.h"
+#include "Composition/CompositionOptions.h"
 #include "Mesh/SurfaceMesh.h"
 
 #include <cstdint>
@@ -34,18 +35,6 @@
 
 namespace otparam
 {
-
-struct CompositionOptions
-{
-  bool correctAreas = true;
-  int maximumCorrectionSweeps = 200;
-  // Sweeps stop once one of them lowers the area-weighted mean |log area ratio| by less than
-  // this fraction of its value (or moves no vertex); then at most 50 more sweeps move only
-  // the vertices that still have a triangle off by more than 5%.
-  double correctionRelativeDecrease = 0.01;
-  // Called with the fraction done; returning false aborts.
-  std::function<bool(double)> progress;
-};
 
 struct CompositionResult
 {

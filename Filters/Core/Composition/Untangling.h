@@ -12,6 +12,119 @@ namespace otparam
 namespace composition
 {
 
+// The point p that maximizes min_k area(p, b_k, c_k) over a star's rim edges (b_k, c_k):
+// each area is linear in p, so this is a linear program in (p, t) whose optimum has three
+// active constraints, found by trying every triple (stars are small). `start` is kept unless
+// some point does better.
+inline Vec2 maximizeSmallestArea(const std::vector<std::pair<Vec2, Vec2>>& rim, Vec2 start)
+{
+  auto smallest = [&rim](Vec2 p)
+  {
+    double value = HUGE_VAL;
+    for (const auto& edge : rim)
+    {
+      value = std::min(value, signedArea(p, edge.first, edge.second));
+    }
+    return value;
+  };
+  struct Plane
+  {
+    double gx, gy, c; // area(p) = gx * p.x + gy * p.y + c
+  };
+  std::vector<Plane> planes;
+  for (const auto& edge : rim)
+  {
+    const Vec2 b = edge.first, c = edge.second;
+    // area = (cross(b, c) + cross(p, b - c)) / 2
+    planes.push_back({ 0.5 * (b.y - c.y), -0.5 * (b.x - c.x), 0.5 * cross(b, c) });
+  }
+  Vec2 best = start;
+  double bestValue = smallest(best);
+  const size_t m = std::min<size_t>(planes.size(), 16);
+  for (size_t i = 0; i < m; ++i)
+  {
+    for (size_t j = i + 1; j < m; ++j)
+    {
+      for (size_t k = j + 1; k < m; ++k)
+      {
+        // area_i(p) = area_j(p) = area_k(p): two linear equations in p.
+        const Plane& a = planes[i];
+        const Plane& b = planes[j];
+        const Plane& c = planes[k];
+        const double a11 = a.gx - b.gx, a12 = a.gy - b.gy, r1 = b.c - a.c;
+        const double a21 = a.gx - c.gx, a22 = a.gy - c.gy, r2 = c.c - a.c;
+        const double det = a11 * a22 - a12 * a21;
+        if (std::abs(det) <= 1e-300)
+        {
+          continue;
+        }
+        const Vec2 p = { (r1 * a22 - a12 * r2) / det, (a11 * r2 - a21 * r1) / det };
+        const double value = smallest(p);
+        if (value > bestValue)
+        {
+          bestValue = value;
+          best = p;
+        }
+      }
+    }
+  }
+  return best;
+}
+
+// The rounds of the untangling, for any domain: each round moves every vertex of a flipped
+// triangle (`moveVertex(v)` returns whether v moved), plus one more ring of their neighbours
+// every 4 rounds, since a vertex whose rim is itself tangled cannot be fixed alone. Returns
+// the number of vertices moved.
+template <class FindFlipped, class MoveVertex, class TriangleAt>
+std::int64_t untangleInRings(const VertexStars& stars, size_t n, FindFlipped findFlipped,
+  MoveVertex moveVertex, TriangleAt triangleAt)
+{
+  std::vector<char> moved(n, 0), inSet(n, 0);
+  constexpr int MaximumRounds = 60;
+  for (int round = 0; round < MaximumRounds; ++round)
+  {
+    const std::vector<int> flipped = findFlipped();
+    if (flipped.empty())
+    {
+      break;
+    }
+    std::vector<int> set;
+    auto add = [&](int v)
+    {
+      if (!inSet[v])
+      {
+        inSet[v] = 1;
+        set.push_back(v);
+      }
+    };
+    for (int t : flipped)
+    {
+      for (int v : triangleAt(t))
+      {
+        add(v);
+      }
+    }
+    for (int ring = 0; ring < round / 4; ++ring)
+    {
+      const size_t count = set.size();
+      for (size_t r = 0; r < count; ++r)
+      {
+        for (int e = stars.offsets[set[r]]; e < stars.offsets[set[r] + 1]; ++e)
+        {
+          add(stars.entries[e][1]);
+          add(stars.entries[e][2]);
+        }
+      }
+    }
+    for (int v : set)
+    {
+      inSet[v] = 0;
+      moved[v] |= moveVertex(v);
+    }
+  }
+  return std::count(moved.begin(), moved.end(), 1);
+}
+
 // Step 2: optimization-based untangling (Freitag and Plassmann): each vertex of a flipped
 // triangle moves to the point of its star that maximizes the smallest signed area of its
 // triangles, which lies in the kernel of the star's rim whenever that kernel is not empty.
@@ -37,56 +150,15 @@ public:
 
   std::int64_t run(std::vector<Vec2>& uv) const
   {
-    const size_t n = uv.size();
-    std::vector<char> moved(n, 0), inSet(n, 0);
-    constexpr int MaximumRounds = 60;
-    for (int round = 0; round < MaximumRounds; ++round)
-    {
-      const std::vector<int> flipped = flippedTriangles(this->Surface.triangles, uv);
-      if (flipped.empty())
+    return untangleInRings(
+      this->Stars, uv.size(), [&] { return flippedTriangles(this->Surface.triangles, uv); },
+      [&](int v)
       {
-        break;
-      }
-      std::vector<int> set;
-      for (int t : flipped)
-      {
-        for (int v : this->Surface.triangles[t])
-        {
-          if (!inSet[v])
-          {
-            inSet[v] = 1;
-            set.push_back(v);
-          }
-        }
-      }
-      for (int ring = 0; ring < round / 4; ++ring)
-      {
-        const size_t count = set.size();
-        for (size_t r = 0; r < count; ++r)
-        {
-          for (int e = this->Stars.offsets[set[r]]; e < this->Stars.offsets[set[r] + 1]; ++e)
-          {
-            for (int k = 1; k < 3; ++k)
-            {
-              const int w = this->Stars.entries[e][k];
-              if (!inSet[w])
-              {
-                inSet[w] = 1;
-                set.push_back(w);
-              }
-            }
-          }
-        }
-      }
-      for (int v : set)
-      {
-        inSet[v] = 0;
         const Vec2 before = uv[v];
         uv[v] = this->Previous[v] >= 0 ? this->bestOnCircle(v, uv) : this->bestInPlane(v, uv);
-        moved[v] |= (uv[v].x != before.x || uv[v].y != before.y);
-      }
-    }
-    return std::count(moved.begin(), moved.end(), 1);
+        return uv[v].x != before.x || uv[v].y != before.y;
+      },
+      [&](int t) { return this->Surface.triangles[t]; });
   }
 
 private:
@@ -101,52 +173,14 @@ private:
     return smallest;
   }
 
-  // max over p of min_k area_k(p), each area_k linear in p: a linear program in (p, t) whose
-  // optimum has three active constraints, found by trying every triple (stars are small).
   Vec2 bestInPlane(int v, const std::vector<Vec2>& uv) const
   {
-    struct Plane
-    {
-      double gx, gy, c; // area(p) = gx * p.x + gy * p.y + c
-    };
-    std::vector<Plane> planes;
+    std::vector<std::pair<Vec2, Vec2>> rim;
     for (int e = this->Stars.offsets[v]; e < this->Stars.offsets[v + 1]; ++e)
     {
-      const Vec2 b = uv[this->Stars.entries[e][1]], c = uv[this->Stars.entries[e][2]];
-      // area = (cross(b, c) + cross(p, b - c)) / 2
-      planes.push_back({ 0.5 * (b.y - c.y), -0.5 * (b.x - c.x), 0.5 * cross(b, c) });
+      rim.emplace_back(uv[this->Stars.entries[e][1]], uv[this->Stars.entries[e][2]]);
     }
-    Vec2 best = uv[v];
-    double bestValue = this->smallestArea(v, best, uv);
-    const size_t m = std::min<size_t>(planes.size(), 16);
-    for (size_t i = 0; i < m; ++i)
-    {
-      for (size_t j = i + 1; j < m; ++j)
-      {
-        for (size_t k = j + 1; k < m; ++k)
-        {
-          // area_i(p) = area_j(p) = area_k(p): two linear equations in p.
-          const Plane& a = planes[i];
-          const Plane& b = planes[j];
-          const Plane& c = planes[k];
-          const double a11 = a.gx - b.gx, a12 = a.gy - b.gy, r1 = b.c - a.c;
-          const double a21 = a.gx - c.gx, a22 = a.gy - c.gy, r2 = c.c - a.c;
-          const double det = a11 * a22 - a12 * a21;
-          if (std::abs(det) <= 1e-300)
-          {
-            continue;
-          }
-          const Vec2 p = { (r1 * a22 - a12 * r2) / det, (a11 * r2 - a21 * r1) / det };
-          const double value = this->smallestArea(v, p, uv);
-          if (value > bestValue)
-          {
-            bestValue = value;
-            best = p;
-          }
-        }
-      }
-    }
-    return best;
+    return maximizeSmallestArea(rim, uv[v]);
   }
 
   // Boundary vertices stay on the circle, between their boundary neighbours: the best of a

@@ -275,4 +275,154 @@ AreaPreservingResult parameterizeDisk(
   return run;
 }
 
+//------------------------------------------------------------------------------
+Domain chooseDomain(const TriangleSoup& surface)
+{
+  CompactedMesh compacted;
+  SurfaceTopology topology;
+  if (compactMesh(surface.points, surface.triangles, compacted).empty() &&
+    analyzeSurface(compacted.mesh, topology).empty() && topology.boundaryLoops.empty())
+  {
+    return Domain::Sphere;
+  }
+  return Domain::Disk;
+}
+
+namespace
+{
+void sampleSphereDensity(const AreaPreservingOptions& options, SphereParameterizationResult& run)
+{
+  const SphereConformalStage& conformal = run.conformal;
+  const std::string densityError = checkDensityValues(conformal.areaDensityPerTriangle, "cell");
+  if (!densityError.empty())
+  {
+    run.sampling.status.error = "The density cell array 'AreaDensity' " + densityError + ".";
+    return;
+  }
+  SamplerOptions samplerOptions = options.sampling;
+  samplerOptions.progress = stageProgress(options, SamplingRange);
+  run.sampling = runSphereSamplingStage(conformal.map.sphere, conformal.surface.mesh.triangles,
+    conformal.areaDensityPerTriangle, samplerOptions);
+  if (!run.sampling.status.ok())
+  {
+    return;
+  }
+  const SphericalSamplerResult& samples = run.sampling.result;
+  for (std::size_t i = 0; i < samples.samples.size(); ++i)
+  {
+    if (samples.mass[i] > 0.0)
+    {
+      run.diracs.push_back(samples.samples[i]);
+      run.masses.push_back(samples.mass[i]);
+    }
+  }
+  run.droppedSamples = static_cast<int>(samples.samples.size() - run.diracs.size());
+}
+
+void composeOnTheSphere(const AreaPreservingOptions& options, SphereParameterizationResult& run)
+{
+  const SphereConformalStage& conformal = run.conformal;
+  run.sampleImages = run.transport.result.centroids;
+  // The interpolation needs the Diracs' own spherical Delaunay triangulation: the sampler's
+  // (all its samples kept) or, after samples were dropped, the Voronoi diagram's dual.
+  const std::vector<Triangle> triangles = run.droppedSamples == 0
+    ? run.sampling.result.triangles
+    : computeSphericalPowerDiagramGeometry(
+        run.transport.diracs, std::vector<double>(run.diracs.size(), 0.0))
+        .triangles;
+  try
+  {
+    CompositionOptions compositionOptions = options.composition;
+    compositionOptions.progress = stageProgress(options, CompositionRange);
+    run.composition = composeOnSphere(conformal.surface.mesh, conformal.map.sphere,
+      run.transport.diracs, triangles, run.sampleImages, compositionOptions);
+    if (run.composition.status.aborted)
+    {
+      run.status.aborted = true;
+      return;
+    }
+    if (!run.composition.status.error.empty())
+    {
+      run.status.error = "composition: " + run.composition.status.error + ".";
+      return;
+    }
+    run.figures = measureSphereDistortion(conformal.surface.mesh, run.composition.sphere);
+  }
+  catch (const std::exception& e)
+  {
+    run.status.error = std::string("composition: ") + e.what();
+  }
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+SphereParameterizationResult parameterizeSphere(
+  const TriangleSoup& surface, const AreaPreservingOptions& options)
+{
+  SphereParameterizationResult run;
+  const auto startTotal = Clock::now();
+  run.status.error = options.check();
+  if (!run.status.error.empty())
+  {
+    return run;
+  }
+  auto start = Clock::now();
+  ConformalSphereMapOptions conformalOptions = options.sphereMap;
+  conformalOptions.progress = stageProgress(options, ConformalRange);
+  run.conformal = runSphereConformalStage(surface, conformalOptions);
+  run.secondsConformal = secondsSince(start);
+  if (!passOn(run.conformal.status, ConformalRange, run.status))
+  {
+    return run;
+  }
+
+  start = Clock::now();
+  sampleSphereDensity(options, run);
+  run.secondsSampling = secondsSince(start);
+  if (!passOn(run.sampling.status, SamplingRange, run.status))
+  {
+    return run;
+  }
+
+  start = Clock::now();
+  OTOptions transportOptions = options.transport;
+  if (options.progress)
+  {
+    NewtonProgress fraction(transportOptions);
+    auto progress = stageProgress(options, TransportRange);
+    transportOptions.progress = [fraction, progress](int iteration, double error) mutable
+    { return progress(fraction(iteration, error)); };
+  }
+  run.transport =
+    runSphereTransportStage(run.diracs, run.masses, transportOptions, options.maximumArcAngle);
+  run.secondsTransport = secondsSince(start);
+  if (!passOn(run.transport.status, TransportRange, run.status))
+  {
+    return run;
+  }
+
+  start = Clock::now();
+  composeOnTheSphere(options, run);
+  run.secondsComposition = secondsSince(start);
+  if (run.status.ok())
+  {
+    std::ostringstream msg;
+    if (run.figures.flippedTriangles > 0)
+    {
+      msg << run.figures.flippedTriangles
+          << " triangle(s) are flipped on the sphere: the untangling did not free them.";
+      run.status.warnings.push_back(msg.str());
+      msg.str("");
+    }
+    if (!run.transport.result.converged)
+    {
+      msg << "The transport did not converge (relative error " << run.transport.result.relativeError
+          << "); the map is approximate.";
+      run.status.warnings.push_back(msg.str());
+    }
+  }
+  run.secondsTotal = secondsSince(startTotal);
+  return run;
+}
+
 } // namespace otparam

@@ -6,7 +6,9 @@
 #define OTPARAM_PIPELINE_AREAPRESERVINGPIPELINE_H
 
 #include "Composition/DiskComposition.h"
+#include "Composition/SphereComposition.h"
 #include "Pipeline/DiskStages.h"
+#include "Pipeline/SphereStages.h"
 
 #include <functional>
 
@@ -18,7 +20,8 @@ struct AreaPreservingOptions
   AreaPreservingOptions();
 
   ConformalStageOptions conformal;
-  SamplerOptions sampling; // numberOfSamples 5000: see the constructor
+  ConformalSphereMapOptions sphereMap; // the sphere's conformal stage
+  SamplerOptions sampling;             // numberOfSamples 5000: see the constructor
   OTOptions transport;
   // Arcs of the circle in the cells whose middles the boundary samples go to.
   double maximumArcAngle = DefaultMaximumArcAngle;
@@ -50,6 +53,40 @@ struct AreaPreservingResult
 };
 
 AreaPreservingResult parameterizeDisk(
+  const TriangleSoup& surface, const AreaPreservingOptions& options = AreaPreservingOptions());
+
+// Where a surface is mapped: the disk (one boundary loop, or several with FillHoles) or the
+// sphere (closed, genus 0).
+enum class Domain
+{
+  Automatic = 0,
+  Disk = 1,
+  Sphere = 2
+};
+
+// The domain Automatic stands for: Sphere for a closed surface (no boundary edge), else Disk.
+Domain chooseDomain(const TriangleSoup& surface);
+
+// The sphere's chain (sphere.md): conformal sphere map -> adaptive sampling of its area density
+// on the sphere -> transport from the uniform sphere -> composition T^-1 o phi.
+struct SphereParameterizationResult
+{
+  // status.error is prefixed by the stage that failed, as for the disk.
+  Status status;
+  SphereConformalStage conformal;
+  SphereSamplingStage sampling;
+  std::vector<Vec3> diracs; // the samples of positive mass
+  std::vector<double> masses;
+  int droppedSamples = 0;
+  SphereTransportStage transport;
+  std::vector<Vec3> sampleImages; // T^-1 of each Dirac: its cell's centroid on the sphere
+  SphereCompositionResult composition;
+  DistortionFigures figures; // of the area-preserving map, per triangle of conformal.surface
+  double secondsConformal = 0, secondsSampling = 0, secondsTransport = 0, secondsComposition = 0,
+         secondsTotal = 0;
+};
+
+SphereParameterizationResult parameterizeSphere(
   const TriangleSoup& surface, const AreaPreservingOptions& options = AreaPreservingOptions());
 
 // Where each Dirac goes under T^-1: the centroid of its power cell, or for a Dirac on the unit

@@ -374,6 +374,17 @@ double NewtonProgress::operator()(int iteration, double relativeError)
 }
 
 //------------------------------------------------------------------------------
+std::string transportNotConvergedWarning(const NewtonReport& result, const OTOptions& options)
+{
+  std::ostringstream msg;
+  msg << "Not converged after " << result.iterations
+      << " Newton iterations (MaximumNumberOfIterations = " << options.maximumNumberOfIterations
+      << "): relative error " << result.relativeError << " > Tolerance " << options.tolerance
+      << ". " << result.message << " The outputs hold this last iterate, with Converged = 0.";
+  return msg.str();
+}
+
+//------------------------------------------------------------------------------
 TransportStage runTransportStage(const SourceMeasure& source, const std::vector<Vec2>& diracs,
   const std::vector<double>& masses, const OTOptions& options, double maximumArcAngle)
 {
@@ -415,12 +426,7 @@ TransportStage runTransportStage(const SourceMeasure& source, const std::vector<
   }
   if (!result.converged)
   {
-    std::ostringstream msg;
-    msg << "Not converged after " << result.iterations
-        << " Newton iterations (MaximumNumberOfIterations = " << options.maximumNumberOfIterations
-        << "): relative error " << result.relativeError << " > Tolerance " << options.tolerance
-        << ". " << result.message << " The outputs hold this last iterate, with Converged = 0.";
-    status.warnings.push_back(msg.str());
+    status.warnings.push_back(transportNotConvergedWarning(result, options));
   }
   return stage;
 }

@@ -113,6 +113,10 @@ private:
   double Fraction = 0.0;
 };
 
+// The warning of a transport solve (disk or sphere) that stopped before Tolerance: how far it
+// got, the solver's reason, and that the outputs hold the last iterate with Converged = 0.
+std::string transportNotConvergedWarning(const NewtonReport& result, const OTOptions& options);
+
 // Diracs and masses as given (positive, finite, distinct: checked here).
 TransportStage runTransportStage(const SourceMeasure& source, const std::vector<Vec2>& diracs,
   const std::vector<double>& masses, const OTOptions& options, double maximumArcAngle);

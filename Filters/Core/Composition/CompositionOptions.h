@@ -1,0 +1,25 @@
+// The options of the composition T^-1 o phi, the same for the disk (DiskComposition.h) and the
+// sphere (SphereComposition.h).
+#ifndef OTPARAM_COMPOSITION_COMPOSITIONOPTIONS_H
+#define OTPARAM_COMPOSITION_COMPOSITIONOPTIONS_H
+
+#include <functional>
+
+namespace otparam
+{
+
+struct CompositionOptions
+{
+  bool correctAreas = true;
+  int maximumCorrectionSweeps = 200;
+  // Sweeps stop once one of them lowers the area-weighted mean |log area ratio| by less than
+  // this fraction of its value (or moves no vertex); then at most 50 more sweeps move only
+  // the vertices that still have a triangle off by more than 5%.
+  double correctionRelativeDecrease = 0.01;
+  // Called with the fraction done; returning false aborts.
+  std::function<bool(double)> progress;
+};
+
+} // namespace otparam
+
+#endif

@@ -1,0 +1,236 @@
+#include "Composition/SphereComposition.h"
+
+#include "Common/SphericalGeometry.h"
+#include "Composition/AreaCorrection.h"
+#include "Composition/Composition.h"
+#include "Composition/Untangling.h"
+
+#include <chrono>
+#include <cmath>
+#include <unordered_map>
+
+namespace otparam
+{
+namespace
+{
+using Clock = std::chrono::steady_clock;
+double secondsSince(Clock::time_point t0)
+{
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+double det(const Vec3& a, const Vec3& b, const Vec3& c)
+{
+  return dot(a, cross(b, c));
+}
+
+// Point location in the samples' spherical Delaunay triangulation by walking: from the last
+// triangle found (mesh points come in spatially coherent order), cross the edge that x lies
+// beyond until x is inside. Delaunay walks end; a cap on the steps falls back to a scan.
+class SphericalLocator
+{
+public:
+  SphericalLocator(const std::vector<Vec3>& samples, const std::vector<Triangle>& triangles)
+    : Samples(samples)
+    , Triangles(triangles)
+    , Across(triangles.size(), { -1, -1, -1 })
+  {
+    std::unordered_map<std::int64_t, int> edgeOwner;
+    edgeOwner.reserve(3 * triangles.size());
+    auto key = [&](int a, int b) { return static_cast<std::int64_t>(a) * samples.size() + b; };
+    for (size_t t = 0; t < triangles.size(); ++t)
+    {
+      for (int k = 0; k < 3; ++k)
+      {
+        edgeOwner[key(triangles[t][(k + 1) % 3], triangles[t][(k + 2) % 3])] = static_cast<int>(t);
+      }
+    }
+    for (size_t t = 0; t < triangles.size(); ++t)
+    {
+      for (int k = 0; k < 3; ++k)
+      {
+        const auto it = edgeOwner.find(key(triangles[t][(k + 2) % 3], triangles[t][(k + 1) % 3]));
+        this->Across[t][k] = it == edgeOwner.end() ? -1 : it->second;
+      }
+    }
+  }
+
+  // The triangle containing direction x and x's weights there (l_a a + l_b b + l_c c = x).
+  int locate(const Vec3& x, std::array<double, 3>& weights)
+  {
+    int t = this->Last;
+    for (int step = 0; step < 100000; ++step)
+    {
+      if (this->inside(t, x, weights))
+      {
+        return this->Last = t;
+      }
+      int worst = 0;
+      for (int k = 1; k < 3; ++k)
+      {
+        worst = weights[k] < weights[worst] ? k : worst;
+      }
+      if (this->Across[t][worst] < 0)
+      {
+        break;
+      }
+      t = this->Across[t][worst];
+    }
+    for (t = 0; t < static_cast<int>(this->Triangles.size()); ++t)
+    {
+      if (this->inside(t, x, weights))
+      {
+        return this->Last = t;
+      }
+    }
+    return -1;
+  }
+
+private:
+  bool inside(int t, const Vec3& x, std::array<double, 3>& weights) const
+  {
+    const Vec3 a = this->Samples[this->Triangles[t][0]], b = this->Samples[this->Triangles[t][1]],
+               c = this->Samples[this->Triangles[t][2]];
+    const double whole = det(a, b, c);
+    weights = { det(x, b, c) / whole, det(a, x, c) / whole, det(a, b, x) / whole };
+    // Only the hemisphere of the triangle: the antipodal triangle has the same signs negated.
+    return weights[0] >= 0.0 && weights[1] >= 0.0 && weights[2] >= 0.0;
+  }
+
+  const std::vector<Vec3>& Samples;
+  const std::vector<Triangle>& Triangles;
+  std::vector<std::array<int, 3>> Across;
+  int Last = 0;
+};
+
+std::vector<int> flippedOnSphere(const SurfaceMesh& surface, const std::vector<Vec3>& sphere)
+{
+  std::vector<int> flipped;
+  for (size_t t = 0; t < surface.triangles.size(); ++t)
+  {
+    const Triangle& tri = surface.triangles[t];
+    if (!(det(sphere[tri[0]], sphere[tri[1]], sphere[tri[2]]) > 0.0))
+    {
+      flipped.push_back(static_cast<int>(t));
+    }
+  }
+  return flipped;
+}
+
+// Moves vertex v to the point of the gnomonic chart at its image that maximizes the smallest
+// signed area of its star (Untangling.h), then back onto the sphere. Returns whether it moved.
+bool untangleVertex(int v, const composition::VertexStars& stars, std::vector<Vec3>& sphere)
+{
+  const Vec3 n = sphere[v];
+  const Vec3 helper = std::abs(n.x) < 0.6 ? Vec3{ 1, 0, 0 } : Vec3{ 0, 1, 0 };
+  const Vec3 e1 = normalized(cross(n, helper)), e2 = cross(n, e1);
+  auto chart = [&](const Vec3& p, Vec2& out)
+  {
+    const double height = dot(p, n);
+    out = { dot(p, e1) / height, dot(p, e2) / height };
+    return height > 0.05; // the star must lie well within the chart's hemisphere
+  };
+  std::vector<std::pair<Vec2, Vec2>> rim;
+  for (int e = stars.offsets[v]; e < stars.offsets[v + 1]; ++e)
+  {
+    Vec2 b, c;
+    if (!chart(sphere[stars.entries[e][1]], b) || !chart(sphere[stars.entries[e][2]], c))
+    {
+      return false;
+    }
+    rim.emplace_back(b, c);
+  }
+  const Vec2 best = composition::maximizeSmallestArea(rim, Vec2{ 0.0, 0.0 });
+  if (best.x == 0.0 && best.y == 0.0)
+  {
+    return false;
+  }
+  sphere[v] = normalized(n + best.x * e1 + best.y * e2);
+  return true;
+}
+} // namespace
+
+double sphereMeanAbsLogAreaRatio(const SurfaceMesh& surface, const std::vector<Vec3>& sphere)
+{
+  const std::vector<double> fraction = composition::surfaceAreaFractions(surface);
+  double mean = 0.0;
+  for (size_t t = 0; t < fraction.size(); ++t)
+  {
+    const Triangle& tri = surface.triangles[t];
+    const double area = sphericalTriangleArea(sphere[tri[0]], sphere[tri[1]], sphere[tri[2]]);
+    const double ratio = std::max(area, 1e-300) / (4.0 * M_PI) / fraction[t];
+    mean += fraction[t] * std::abs(std::log(ratio));
+  }
+  return mean;
+}
+
+SphereCompositionResult composeOnSphere(const SurfaceMesh& surface,
+  const std::vector<Vec3>& conformal, const std::vector<Vec3>& samples,
+  const std::vector<Triangle>& sampleTriangles, const std::vector<Vec3>& sampleImages,
+  const CompositionOptions& options)
+{
+  auto report = [&options](double fraction)
+  { return !options.progress || options.progress(fraction); };
+  SphereCompositionResult result;
+  auto t0 = Clock::now();
+  SphericalLocator locator(samples, sampleTriangles);
+  const size_t n = conformal.size();
+  result.interpolated.resize(n);
+  for (size_t v = 0; v < n; ++v)
+  {
+    std::array<double, 3> w{};
+    const int t = locator.locate(conformal[v], w);
+    if (t < 0)
+    {
+      result.status.error = "a mesh point's conformal image lies in no triangle of the samples "
+                            "(the samples do not cover the sphere)";
+      return result;
+    }
+    const Triangle& tri = sampleTriangles[t];
+    result.interpolated[v] = normalized(
+      w[0] * sampleImages[tri[0]] + w[1] * sampleImages[tri[1]] + w[2] * sampleImages[tri[2]]);
+  }
+  result.secondsInterpolation = secondsSince(t0);
+  if (!report(0.2))
+  {
+    result.status.aborted = true;
+    return result;
+  }
+  result.flippedAfterInterpolation =
+    static_cast<std::int64_t>(flippedOnSphere(surface, result.interpolated).size());
+  result.meanAbsLogAreaRatioInterpolated = sphereMeanAbsLogAreaRatio(surface, result.interpolated);
+
+  t0 = Clock::now();
+  result.sphere = result.interpolated;
+  const composition::VertexStars stars(n, surface.triangles);
+  result.untangledVertices = composition::untangleInRings(
+    stars, n, [&] { return flippedOnSphere(surface, result.sphere); },
+    [&](int v) { return untangleVertex(v, stars, result.sphere); },
+    [&](int t) { return surface.triangles[t]; });
+  result.secondsUntangling = secondsSince(t0);
+  result.meanAbsLogAreaRatio = sphereMeanAbsLogAreaRatio(surface, result.sphere);
+  if (!report(0.3))
+  {
+    result.status.aborted = true;
+    return result;
+  }
+
+  t0 = Clock::now();
+  // Only an untangled map is corrected: the correction keeps every triangle positive.
+  if (options.correctAreas && flippedOnSphere(surface, result.sphere).empty())
+  {
+    const std::vector<double> surfaceFraction = composition::surfaceAreaFractions(surface);
+    composition::AreaCorrectionOn<composition::SphereGeometry> correction(
+      surface, {}, stars, surfaceFraction);
+    composition::correctAreas(
+      correction, result.sphere, options,
+      [&](const std::vector<Vec3>& sphere) { return sphereMeanAbsLogAreaRatio(surface, sphere); },
+      report, result.correctionSweeps, result.meanAbsLogAreaRatio);
+  }
+  result.secondsCorrection = secondsSince(t0);
+  result.flippedTriangles =
+    static_cast<std::int64_t>(flippedOnSphere(surface, result.sphere).size());
+  return result;
+}
+
+} // namespace otparam

@@ -1,0 +1,169 @@
+#include "Pipeline/SphereStages.h"
+
+#include "Pipeline/DiskStages.h"
+
+#include <cmath>
+#include <sstream>
+
+namespace otparam
+{
+
+SphereConformalStage runSphereConformalStage(
+  const TriangleSoup& soup, const ConformalSphereMapOptions& options)
+{
+  SphereConformalStage stage;
+  Status& status = stage.status;
+  std::string error = compactMesh(soup.points, soup.triangles, stage.surface);
+  if (error.empty())
+  {
+    error = checkSphereTopology(stage.surface.mesh, &stage.surface.originalPointIds);
+  }
+  if (!error.empty())
+  {
+    status.error = "The input is not a closed genus-0 triangle surface: " + error + ".";
+    return stage;
+  }
+  const SurfaceMesh& mesh = stage.surface.mesh;
+  try
+  {
+    stage.map = computeConformalSphereMap(mesh, options);
+    if (stage.map.status.aborted)
+    {
+      status.aborted = true;
+      return stage;
+    }
+    if (!stage.map.status.error.empty())
+    {
+      status.error = "The conformal sphere map failed: " + stage.map.status.error + ".";
+      return stage;
+    }
+    stage.figures = measureSphereDistortion(mesh, stage.map.sphere);
+    computeSphereAreaDensity(
+      mesh, stage.map.sphere, stage.areaDensityPerTriangle, stage.areaDensityPerPoint);
+  }
+  catch (const std::exception& e)
+  {
+    status.error = std::string("The conformal sphere map failed: ") + e.what();
+    return stage;
+  }
+  status.warnings = stage.map.status.warnings;
+  std::ostringstream msg;
+  if (stage.surface.unreferencedPoints > 0)
+  {
+    msg << stage.surface.unreferencedPoints
+        << " input point(s) belong to no triangle and are left out of the output; the point "
+           "array vtkOriginalPointIds gives each output point's input id.";
+    status.warnings.push_back(msg.str());
+    msg.str("");
+  }
+  if (stage.figures.flippedTriangles > 0)
+  {
+    msg << stage.figures.flippedTriangles << " triangle(s) are flipped in the sphere image.";
+    status.warnings.push_back(msg.str());
+  }
+  return stage;
+}
+
+SphereSamplingStage runSphereSamplingStage(const std::vector<Vec3>& spherePoints,
+  const std::vector<Triangle>& triangles, const std::vector<double>& perTriangle,
+  const SamplerOptions& options)
+{
+  SphereSamplingStage stage;
+  Status& status = stage.status;
+  status.error = checkSamplerOptions(options);
+  if (!status.error.empty())
+  {
+    return stage;
+  }
+  try
+  {
+    stage.result = sampleSphere(spherePoints, triangles, perTriangle, options);
+  }
+  catch (const std::exception& e)
+  {
+    status.error = std::string("The sampling failed: ") + e.what();
+    return stage;
+  }
+  const SphericalSamplerResult& result = stage.result;
+  if (result.status.aborted)
+  {
+    status.aborted = true;
+    return stage;
+  }
+  if (!result.status.error.empty())
+  {
+    status.error = "The sampling failed: " + result.status.error;
+    return stage;
+  }
+  if (result.capped)
+  {
+    std::ostringstream msg;
+    msg << "The refinement hit the cap MaximumNumberOfSamples = " << options.maximumNumberOfSamples
+        << " and stopped there with " << result.samples.size()
+        << " samples (raise MaximumNumberOfSamples or lower NumberOfSamples).";
+    status.warnings.push_back(msg.str());
+  }
+  status.warnings.insert(
+    status.warnings.end(), result.status.warnings.begin(), result.status.warnings.end());
+  return stage;
+}
+
+SphereTransportStage runSphereTransportStage(const std::vector<Vec3>& diracs,
+  const std::vector<double>& masses, const OTOptions& options, double maximumArcAngle)
+{
+  SphereTransportStage stage;
+  Status& status = stage.status;
+  status.error = checkTransportOptions(options, maximumArcAngle);
+  if (!status.error.empty())
+  {
+    return stage;
+  }
+  stage.diracs = diracs;
+  const std::string diracError = validateSphericalDiracs(stage.diracs, masses);
+  if (!diracError.empty())
+  {
+    status.error = "Invalid Diracs input (port 0): " + diracError + ".";
+    return stage;
+  }
+  SphericalOTResult& result = stage.result;
+  try
+  {
+    result = solveSphericalOT(stage.diracs, masses, options);
+    if (result.aborted)
+    {
+      status.aborted = true;
+      return stage;
+    }
+    stage.geometry =
+      computeSphericalPowerDiagramGeometry(stage.diracs, result.heights, maximumArcAngle);
+  }
+  catch (const std::exception& e)
+  {
+    status.error = std::string("The spherical OT solve failed: ") + e.what();
+    return stage;
+  }
+  if (result.heights.size() != diracs.size())
+  {
+    status.error = "The spherical OT solve returned no solution: " + result.message + ".";
+    return stage;
+  }
+  if (!result.converged)
+  {
+    status.warnings.push_back(transportNotConvergedWarning(result, options));
+  }
+  return stage;
+}
+
+bool pointsOnUnitSphere(const std::vector<Vec3>& points, double tolerance)
+{
+  for (const Vec3& p : points)
+  {
+    if (!(std::abs(norm(p) - 1.0) <= tolerance))
+    {
+      return false;
+    }
+  }
+  return !points.empty();
+}
+
+} // namespace otparam

@@ -1,0 +1,141 @@
+// The whole sphere pipeline (parameterizeSphere) against maps known exactly (sphere.md, "Exact
+// checks") and on the shared closed meshes.
+#include "MeshFiles.h"
+#include "Pipeline/AreaPreservingPipeline.h"
+#include "SphereMeshes.h"
+
+#include <Eigen/Dense>
+#include <gtest/gtest.h>
+
+#include <cstdio>
+
+namespace otparam
+{
+namespace
+{
+TriangleSoup toSoup(const SurfaceMesh& mesh)
+{
+  TriangleSoup soup;
+  soup.points = mesh.points;
+  for (const Triangle& t : mesh.triangles)
+  {
+    soup.triangles.push_back({ t[0], t[1], t[2] });
+  }
+  return soup;
+}
+
+// Largest distance between `image` and `reference` after the rotation that best aligns them
+// (Kabsch).
+double distanceAfterBestRotation(const std::vector<Vec3>& image, const std::vector<Vec3>& reference)
+{
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+  for (size_t i = 0; i < image.size(); ++i)
+  {
+    covariance += Eigen::Vector3d(reference[i].x, reference[i].y, reference[i].z) *
+      Eigen::Vector3d(image[i].x, image[i].y, image[i].z).transpose();
+  }
+  Eigen::JacobiSVD<Eigen::Matrix3d> svd(covariance, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Eigen::Matrix3d d = Eigen::Matrix3d::Identity();
+  d(2, 2) = (svd.matrixU() * svd.matrixV().transpose()).determinant() > 0 ? 1.0 : -1.0;
+  const Eigen::Matrix3d rotation = svd.matrixU() * d * svd.matrixV().transpose();
+  double worst = 0.0;
+  for (size_t i = 0; i < image.size(); ++i)
+  {
+    const Eigen::Vector3d r = rotation * Eigen::Vector3d(image[i].x, image[i].y, image[i].z);
+    worst =
+      std::max(worst, (r - Eigen::Vector3d(reference[i].x, reference[i].y, reference[i].z)).norm());
+  }
+  return worst;
+}
+
+void expectValidMap(const SphereParameterizationResult& r)
+{
+  ASSERT_TRUE(r.status.ok()) << r.status.error;
+  EXPECT_TRUE(r.transport.result.converged) << r.transport.result.message;
+  EXPECT_LE(r.transport.result.relativeError, 1e-10);
+  EXPECT_EQ(r.figures.flippedTriangles, 0);
+  for (const Vec3& p : r.composition.sphere)
+  {
+    ASSERT_NEAR(norm(p), 1.0, 1e-12);
+  }
+}
+
+// The surface is the unit sphere with its points crowded toward a pole: both maps are
+// rotations.
+TEST(SphereParameterization, CrowdedRoundSphereMapsByARotation)
+{
+  std::vector<Vec3> points = testing::fibonacciSphere(6000);
+  for (Vec3& p : points)
+  {
+    p = testing::moebiusDilation(p, 2.0);
+  }
+  const SurfaceMesh mesh = testing::convexHullMesh(points);
+  const SphereParameterizationResult r = parameterizeSphere(toSoup(mesh));
+  expectValidMap(r);
+  const double conformal = distanceAfterBestRotation(r.conformal.map.sphere, mesh.points);
+  const double area = distanceAfterBestRotation(r.composition.sphere, mesh.points);
+  std::printf("round sphere: conformal %.2e, area-preserving %.2e from a rotation; area %.4f\n",
+    conformal, area, r.figures.meanAbsLogAreaRatio);
+  EXPECT_LE(conformal, 1e-2);
+  EXPECT_LE(area, 1e-2);
+}
+
+// A surface of revolution with two waists: the area-preserving map is zonal, each point's polar
+// angle from the pole's image fixed by the area above it, cos(theta) = 1 - 2 A(above) / A.
+TEST(SphereParameterization, SurfaceOfRevolutionMapsZonally)
+{
+  const SurfaceMesh mesh = testing::revolutionSurface(testing::twoWaistRadius, 120, 160);
+  const SphereParameterizationResult r = parameterizeSphere(toSoup(mesh));
+  expectValidMap(r);
+  // Area above each ring (rings are the points of equal z), from the mesh's own triangles.
+  std::vector<double> above(mesh.points.size(), 0.0);
+  double total = 0.0;
+  std::vector<std::pair<double, double>> bandArea; // (lowest z of the triangle, area)
+  for (const Triangle& t : mesh.triangles)
+  {
+    const double z = std::min({ mesh.points[t[0]].z, mesh.points[t[1]].z, mesh.points[t[2]].z });
+    const double area = triangleArea(mesh, t);
+    bandArea.emplace_back(z, area);
+    total += area;
+  }
+  const Vec3 pole = r.composition.sphere[0];
+  double worst = 0.0;
+  for (size_t v = 0; v < mesh.points.size(); ++v)
+  {
+    double a = 0.0;
+    for (const auto& band : bandArea)
+    {
+      a += band.first >= mesh.points[v].z - 1e-12 ? band.second : 0.0;
+    }
+    const double expected = std::acos(std::clamp(1.0 - 2.0 * a / total, -1.0, 1.0));
+    const double angle = std::acos(std::clamp(dot(pole, r.composition.sphere[v]), -1.0, 1.0));
+    worst = std::max(worst, std::abs(angle - expected));
+  }
+  std::printf("revolution: largest polar angle error %.4f rad, area %.4f\n", worst,
+    r.figures.meanAbsLogAreaRatio);
+  EXPECT_LE(worst, 2e-2);
+}
+
+class SharedClosedMeshes : public ::testing::TestWithParam<const char*>
+{
+};
+
+TEST_P(SharedClosedMeshes, AreaPreservingWithinOnePercent)
+{
+  const TriangleSoup soup = testing::readSoup(testing::sharedMesh(GetParam()));
+  const SphereParameterizationResult r = parameterizeSphere(soup);
+  expectValidMap(r);
+  std::printf("%s: %zu Diracs, %d iterations, error %.1e, area %.4f (interpolated %.4f), "
+              "angle %.2f deg, flips after interpolation %lld, %.2f s\n",
+    GetParam(), r.diracs.size(), r.transport.result.iterations, r.transport.result.relativeError,
+    r.figures.meanAbsLogAreaRatio, r.composition.meanAbsLogAreaRatioInterpolated,
+    r.figures.meanAngleDistortionDegrees,
+    static_cast<long long>(r.composition.flippedAfterInterpolation), r.secondsTotal);
+  EXPECT_LE(r.figures.meanAbsLogAreaRatio, 0.01);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+  Sphere, SharedClosedMeshes, ::testing::Values("spot_closed_3k.obj", "brain_choi_closed_48k.off"));
+
+} // namespace
+} // namespace otparam
