@@ -1,11 +1,14 @@
 #include "OTParamConvert.h"
 
+#include "vtkAbstractArray.h"
 #include "vtkCellData.h"
+#include "vtkDataArray.h"
 #include "vtkFieldData.h"
 #include "vtkIdList.h"
 #include "vtkIdTypeArray.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
+#include "vtkPointSet.h"
 #include "vtkPolyData.h"
 #include "vtkStringArray.h"
 #include "vtkTable.h"
@@ -116,6 +119,58 @@ std::string ReadPlanarPoints(const std::vector<otparam::Vec3>& points,
   {
     msg << "The " << what << " is not planar: it must lie in the plane z = 0 but point id(s) "
         << otparam::idList(offPlane) << " have z != 0 (first z: " << firstZ << ").";
+  }
+  return msg.str();
+}
+
+//------------------------------------------------------------------------------
+std::string ReadDiracs(
+  vtkPointSet* input, std::vector<otparam::Vec3>& points, std::vector<double>& masses)
+{
+  const vtkIdType n = (input && input->GetPoints()) ? input->GetNumberOfPoints() : 0;
+  if (n == 0)
+  {
+    return "The Diracs input (port 0) has no points; the target measure needs points with a "
+           "positive Mass.";
+  }
+  vtkAbstractArray* massAbstract = input->GetPointData()->GetAbstractArray("Mass");
+  if (!massAbstract)
+  {
+    return "The Diracs input (port 0) has no point array 'Mass'; each point needs a positive "
+           "Mass.";
+  }
+  std::ostringstream msg;
+  vtkDataArray* massArray = vtkDataArray::SafeDownCast(massAbstract);
+  if (!massArray)
+  {
+    msg << "The point array 'Mass' of the Diracs input is not numeric (it is a "
+        << massAbstract->GetClassName() << "); it must hold one positive number per point.";
+    return msg.str();
+  }
+  if (massArray->GetNumberOfComponents() != 1)
+  {
+    msg << "The point array 'Mass' of the Diracs input has " << massArray->GetNumberOfComponents()
+        << " components; it must have exactly 1.";
+    return msg.str();
+  }
+  points.resize(static_cast<std::size_t>(n));
+  masses.resize(static_cast<std::size_t>(n));
+  std::vector<vtkIdType> badCoordinates;
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    double p[3];
+    input->GetPoint(i, p);
+    if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
+    {
+      badCoordinates.push_back(i);
+    }
+    points[i] = { p[0], p[1], p[2] };
+    masses[i] = massArray->GetComponent(i, 0);
+  }
+  if (!badCoordinates.empty())
+  {
+    msg << "The Diracs input has NaN or infinite coordinates at point id(s) "
+        << otparam::idList(badCoordinates) << ".";
   }
   return msg.str();
 }
@@ -275,6 +330,22 @@ double Seconds(std::chrono::steady_clock::time_point start)
 }
 
 //------------------------------------------------------------------------------
+void AddNewtonReport(vtkDataObject* data, const otparam::NewtonReport& report)
+{
+  AddIntScalar(data, "Iterations", report.iterations);
+  AddScalar(data, "RelativeError", report.relativeError);
+  AddIntScalar(data, "Converged", report.converged ? 1 : 0);
+  data->GetFieldData()->AddArray(
+    MakeDoubleArray("GradientNormHistory", report.gradientNormHistory));
+  data->GetFieldData()->AddArray(MakeDoubleArray("StepLengthHistory", report.stepLengthHistory));
+  AddScalar(data, "SecondsTriangulation", report.secondsTriangulation);
+  AddScalar(data, "SecondsIntegration", report.secondsIntegration);
+  AddScalar(data, "SecondsAssembly", report.secondsAssembly);
+  AddScalar(data, "SecondsSolve", report.secondsSolve);
+  AddString(data, "StopReason", report.message);
+}
+
+//------------------------------------------------------------------------------
 void AddHistogram(
   vtkTable* table, const std::string& name, const std::vector<double>& values, int bins)
 {
@@ -322,41 +393,72 @@ void AddHistogram(
 }
 
 //------------------------------------------------------------------------------
-void WritePowerCells(const otparam::TransportStage& transport, vtkPolyData* output)
+void WriteCells(const std::vector<std::vector<otparam::Vec3>>& cells,
+  const std::vector<int>& cellDirac, const std::vector<double>& mass,
+  const std::vector<double>& cellMass, vtkPolyData* output)
 {
-  const otparam::PowerDiagramGeometry& geometry = transport.geometry;
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
   vtkNew<vtkCellArray> polygons;
   vtkNew<vtkIntArray> diracId;
   diracId->SetName("DiracId");
-  vtkNew<vtkDoubleArray> mass, cellMass;
-  mass->SetName("Mass");
-  cellMass->SetName("CellMass");
+  vtkNew<vtkDoubleArray> cellTarget, cellReached;
+  cellTarget->SetName("Mass");
+  cellReached->SetName("CellMass");
   std::vector<vtkIdType> ids;
-  for (std::size_t c = 0; c < geometry.cells.size(); ++c)
+  for (std::size_t c = 0; c < cells.size(); ++c)
   {
-    const std::vector<otparam::Vec2>& cell = geometry.cells[c];
-    if (cell.size() < 3)
+    if (cells[c].size() < 3)
     {
       continue;
     }
     ids.clear();
-    for (const otparam::Vec2& p : cell)
+    for (const otparam::Vec3& p : cells[c])
     {
-      ids.push_back(points->InsertNextPoint(p.x, p.y, 0.0));
+      ids.push_back(points->InsertNextPoint(p.x, p.y, p.z));
     }
     polygons->InsertNextCell(static_cast<vtkIdType>(ids.size()), ids.data());
-    const int dirac = geometry.cellDirac[c];
+    const int dirac = cellDirac[c];
     diracId->InsertNextValue(dirac);
-    mass->InsertNextValue(transport.result.mass[dirac]);
-    cellMass->InsertNextValue(transport.result.cellMass[dirac]);
+    cellTarget->InsertNextValue(mass[dirac]);
+    cellReached->InsertNextValue(cellMass[dirac]);
   }
   output->SetPoints(points);
   output->SetPolys(polygons);
   output->GetCellData()->AddArray(diracId);
-  output->GetCellData()->AddArray(mass);
-  output->GetCellData()->AddArray(cellMass);
+  output->GetCellData()->AddArray(cellTarget);
+  output->GetCellData()->AddArray(cellReached);
+}
+
+//------------------------------------------------------------------------------
+void WriteDiracSurface(
+  const std::vector<otparam::Vec3>& points, vtkCellArray* triangles, vtkPolyData* output)
+{
+  vtkNew<vtkIntArray> diracId;
+  diracId->SetName("DiracId");
+  diracId->SetNumberOfTuples(static_cast<vtkIdType>(points.size()));
+  for (std::size_t i = 0; i < points.size(); ++i)
+  {
+    diracId->SetValue(static_cast<vtkIdType>(i), static_cast<int>(i));
+  }
+  output->SetPoints(MakePoints(points));
+  output->SetPolys(triangles);
+  output->GetPointData()->AddArray(diracId);
+}
+
+//------------------------------------------------------------------------------
+void WritePowerCells(const otparam::TransportStage& transport, vtkPolyData* output)
+{
+  const otparam::PowerDiagramGeometry& geometry = transport.geometry;
+  std::vector<std::vector<otparam::Vec3>> cells(geometry.cells.size());
+  for (std::size_t c = 0; c < cells.size(); ++c)
+  {
+    for (const otparam::Vec2& p : geometry.cells[c])
+    {
+      cells[c].push_back({ p.x, p.y, 0.0 });
+    }
+  }
+  WriteCells(cells, geometry.cellDirac, transport.result.mass, transport.result.cellMass, output);
 }
 
 //------------------------------------------------------------------------------
@@ -403,21 +505,12 @@ void WriteBrenierPotential(const otparam::TransportStage& transport,
 void WriteLegendreDual(const otparam::TransportStage& transport,
   const std::vector<otparam::Vec2>& diracs, vtkCellArray* triangles, vtkPolyData* output)
 {
-  const auto n = static_cast<vtkIdType>(diracs.size());
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToDouble();
-  points->SetNumberOfPoints(n);
-  vtkNew<vtkIntArray> diracId;
-  diracId->SetName("DiracId");
-  diracId->SetNumberOfTuples(n);
-  for (vtkIdType i = 0; i < n; ++i)
+  std::vector<otparam::Vec3> points(diracs.size());
+  for (std::size_t i = 0; i < diracs.size(); ++i)
   {
-    points->SetPoint(i, diracs[i].x, diracs[i].y, transport.result.heights[i]);
-    diracId->SetValue(i, static_cast<int>(i));
+    points[i] = { diracs[i].x, diracs[i].y, transport.result.heights[i] };
   }
-  output->SetPoints(points);
-  output->SetPolys(triangles);
-  output->GetPointData()->AddArray(diracId);
+  WriteDiracSurface(points, triangles, output);
 }
 
 //------------------------------------------------------------------------------

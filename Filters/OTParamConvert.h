@@ -38,6 +38,12 @@ std::string ReadTriangleSoup(vtkPolyData* input, const char* what, otparam::Tria
 std::string ReadPlanarPoints(const std::vector<otparam::Vec3>& points,
   const std::vector<std::int64_t>& ids, const char* what, std::vector<otparam::Vec2>& planar);
 
+// The Diracs of the solvers' port 0: the points of `input` (finite) and its numeric
+// one-component point array Mass. The values of Mass and the points' positions are left to the
+// core's validation (validateDiracs, validateSphericalDiracs), which names the offending ids.
+std::string ReadDiracs(
+  vtkPointSet* input, std::vector<otparam::Vec3>& points, std::vector<double>& masses);
+
 // ---- Writing.
 vtkSmartPointer<vtkPoints> MakePoints(const std::vector<otparam::Vec2>& points);
 vtkSmartPointer<vtkPoints> MakePoints(const std::vector<otparam::Vec3>& points);
@@ -70,10 +76,24 @@ void AddDistortionFigures(
 
 double Seconds(std::chrono::steady_clock::time_point start);
 
+// Field data of a Newton solve: Iterations, RelativeError, Converged, GradientNormHistory,
+// StepLengthHistory, SecondsTriangulation, SecondsIntegration, SecondsAssembly, SecondsSolve
+// and StopReason.
+void AddNewtonReport(vtkDataObject* data, const otparam::NewtonReport& report);
+
 // Equal-width histogram of the finite `values` over their range: columns `<name>BinCenter`
 // and `<name>` (number of values in the bin).
 void AddHistogram(
   vtkTable* table, const std::string& name, const std::vector<double>& values, int bins);
+
+// One polygon per cell (cells with fewer than 3 points are skipped), cell arrays DiracId (int,
+// `cellDirac`), and Mass and CellMass of that Dirac.
+void WriteCells(const std::vector<std::vector<otparam::Vec3>>& cells,
+  const std::vector<int>& cellDirac, const std::vector<double>& mass,
+  const std::vector<double>& cellMass, vtkPolyData* output);
+// One point per Dirac with the given triangles (shared, not copied) and point array DiracId.
+void WriteDiracSurface(
+  const std::vector<otparam::Vec3>& points, vtkCellArray* triangles, vtkPolyData* output);
 
 // The solver's outputs beyond the Diracs, from the transport stage: the clipped power cells
 // (port 1), the Brenier potential over them (port 2), the Legendre dual (port 3) and the

@@ -12,6 +12,7 @@
 
 #include "OTParamConvert.h"
 #include "Pipeline/DiskStages.h"
+#include "Pipeline/SphereStages.h"
 
 #include <algorithm>
 #include <chrono>
@@ -135,6 +136,92 @@ std::string ReadDensity(vtkInformation* arrayInfo, vtkAbstractArray* densityAbst
     otparam::checkDensityValues(values, perPointArray ? "point" : "cell", &ids);
   return error.empty() ? error : description + " " + error + ".";
 }
+
+// A sphere domain: every point on the unit sphere (to 1e-6; the core then asks 1e-9 and names
+// the point) and not all in the plane z = 0, so that no planar domain (z = 0 up to 1e-12 of its
+// size) is ever taken for one, even with all its points on the unit circle.
+bool IsSphereDomain(const std::vector<otparam::Vec3>& points)
+{
+  const bool offPlane = std::any_of(
+    points.begin(), points.end(), [](const otparam::Vec3& p) { return std::abs(p.z) > 1e-6; });
+  return offPlane && otparam::pointsOnUnitSphere(points, 1e-6);
+}
+
+// For a domain that is neither planar nor on the unit sphere: the point farthest from the unit
+// sphere (input id), to say why it is not a sphere domain either.
+std::string NotOnSphereHint(const otparam::CompactedMesh& domain)
+{
+  std::size_t worst = 0;
+  double worstError = -1.0;
+  for (std::size_t v = 0; v < domain.mesh.points.size(); ++v)
+  {
+    const double error = std::abs(otparam::norm(domain.mesh.points[v]) - 1.0);
+    if (!(error <= worstError))
+    {
+      worst = v;
+      worstError = error;
+    }
+  }
+  std::ostringstream msg;
+  msg << " It is no sphere domain either (every point on the unit sphere): point "
+      << domain.originalPointIds[worst] << " is at distance "
+      << otparam::norm(domain.mesh.points[worst]) << " from the origin.";
+  return msg.str();
+}
+
+// The per-triangle density of a sphere domain: the cell array as read, or a point array
+// averaged over each triangle's three corners.
+std::vector<double> TriangleDensity(const otparam::CompactedMesh& domain,
+  const std::vector<double>& perPoint, const std::vector<double>& perTriangle)
+{
+  if (perPoint.empty())
+  {
+    return perTriangle;
+  }
+  std::vector<double> density(domain.mesh.triangles.size());
+  for (std::size_t t = 0; t < density.size(); ++t)
+  {
+    const otparam::Triangle& tri = domain.mesh.triangles[t];
+    density[t] = (perPoint[tri[0]] + perPoint[tri[1]] + perPoint[tri[2]]) / 3.0;
+  }
+  return density;
+}
+
+// Output and field data every mode and domain shares (samples in the plane or on the sphere).
+template <class Point>
+void WriteSamples(const std::vector<Point>& samples,
+  const std::vector<otparam::Triangle>& triangles, const otparam::SamplerResultBase& result,
+  vtkPolyData* output)
+{
+  output->SetPoints(MakePoints(samples));
+  output->SetPolys(MakeTriangles(triangles));
+  output->GetPointData()->AddArray(MakeDoubleArray("Mass", result.mass));
+  AddIntScalar(output, "NumberOfSamples", static_cast<long long>(samples.size()));
+  AddScalar(output, "MassCoefficientOfVariation", result.massCoefficientOfVariation);
+  AddScalar(output, "MinimumAngle", result.minimumAngleDegrees);
+  AddScalar(output, "Epsilon", result.epsilon);
+  AddScalar(output, "SourceMass", result.sourceMass);
+  AddIntScalar(output, "RefinementRuns", result.refinementRuns);
+  AddIntScalar(output, "Capped", result.capped ? 1 : 0);
+  AddScalar(output, "SecondsRefinement", result.secondsRefinement);
+  AddScalar(output, "SecondsMasses", result.secondsMasses);
+}
+
+// Messages about the input's unreferenced points, for either domain's stage status.
+void AddUnreferencedNote(const otparam::CompactedMesh& domain, otparam::Status& status)
+{
+  if (domain.unreferencedPoints == 0)
+  {
+    return;
+  }
+  if (!status.error.empty())
+  {
+    status.error += " Point ids here count only the input points used by triangles.";
+  }
+  std::ostringstream msg;
+  msg << domain.unreferencedPoints << " input point(s) belong to no triangle and are ignored.";
+  status.warnings.insert(status.warnings.begin(), msg.str());
+}
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -152,8 +239,8 @@ int vtkAdaptiveDensitySampler::Execute(
   options.maximumNumberOfSamples = this->MaximumNumberOfSamples;
   options.minimumAngleDegrees = this->MinimumAngle;
   options.progress = this->ProgressCallback();
-  // Parameters first, then the domain (triangles in the plane z = 0; points used by no
-  // triangle are left out), then the density.
+  // Parameters first, then the domain (triangles in the plane z = 0, or on the unit sphere;
+  // points used by no triangle are left out), then the density.
   std::string error = otparam::checkSamplerOptions(options);
   otparam::TriangleSoup soup;
   otparam::CompactedMesh domain;
@@ -168,9 +255,11 @@ int vtkAdaptiveDensitySampler::Execute(
     error = otparam::compactMesh(soup.points, soup.triangles, domain);
     error = error.empty() ? error : "The input domain is not a triangulation: " + error + ".";
   }
-  if (error.empty())
+  const bool sphere = error.empty() && IsSphereDomain(domain.mesh.points);
+  if (error.empty() && !sphere)
   {
     error = ReadPlanarPoints(domain.mesh.points, domain.originalPointIds, "input domain", points);
+    error = error.empty() ? error : error + NotOnSphereHint(domain);
   }
   if (error.empty())
   {
@@ -186,18 +275,26 @@ int vtkAdaptiveDensitySampler::Execute(
     return 0;
   }
 
+  if (sphere)
+  {
+    otparam::SphereSamplingStage stage = otparam::runSphereSamplingStage(domain.mesh.points,
+      domain.mesh.triangles, TriangleDensity(domain, perPoint, perTriangle), options);
+    AddUnreferencedNote(domain, stage.status);
+    if (!this->ReportStatus(stage.status))
+    {
+      return 0;
+    }
+    const otparam::SphericalSamplerResult& result = stage.result;
+    WriteSamples(result.samples, result.triangles, result, output);
+    AddScalar(output, "DensityIntegral", result.densityIntegral);
+    AddScalar(output, "MassSumRelativeError", result.massSumRelativeError);
+    AddScalar(output, "SecondsTotal", Seconds(startTotal));
+    return 1;
+  }
+
   otparam::SamplingStage stage =
     otparam::runSamplingStage(points, domain.mesh.triangles, perPoint, perTriangle, options);
-  if (!stage.status.error.empty() && domain.unreferencedPoints > 0)
-  {
-    stage.status.error += " Point ids here count only the input points used by triangles.";
-  }
-  if (domain.unreferencedPoints > 0)
-  {
-    std::ostringstream msg;
-    msg << domain.unreferencedPoints << " input point(s) belong to no triangle and are ignored.";
-    stage.status.warnings.insert(stage.status.warnings.begin(), msg.str());
-  }
+  AddUnreferencedNote(domain, stage.status);
   if (stage.zeroMassSamples > 0)
   {
     std::ostringstream msg;
@@ -210,20 +307,8 @@ int vtkAdaptiveDensitySampler::Execute(
   {
     return 0;
   }
-
   const otparam::SamplerResult& result = stage.result;
-  output->SetPoints(MakePoints(result.samples));
-  output->SetPolys(MakeTriangles(result.triangles));
-  output->GetPointData()->AddArray(MakeDoubleArray("Mass", result.mass));
-  AddIntScalar(output, "NumberOfSamples", static_cast<long long>(result.samples.size()));
-  AddScalar(output, "MassCoefficientOfVariation", result.massCoefficientOfVariation);
-  AddScalar(output, "MinimumAngle", result.minimumAngleDegrees);
-  AddScalar(output, "Epsilon", result.epsilon);
-  AddScalar(output, "SourceMass", result.sourceMass);
-  AddIntScalar(output, "RefinementRuns", result.refinementRuns);
-  AddIntScalar(output, "Capped", result.capped ? 1 : 0);
-  AddScalar(output, "SecondsRefinement", result.secondsRefinement);
-  AddScalar(output, "SecondsMasses", result.secondsMasses);
+  WriteSamples(result.samples, result.triangles, result, output);
   AddScalar(output, "SecondsTotal", Seconds(startTotal));
   return 1;
 }

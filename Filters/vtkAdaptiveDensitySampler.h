@@ -1,6 +1,7 @@
 /**
  * @class   vtkAdaptiveDensitySampler
- * @brief   Samples of a density on a planar domain whose masses are nearly equal.
+ * @brief   Samples of a density on a planar domain or the unit sphere whose masses are nearly
+ *          equal.
  *
  * Turns a density on a planar triangulated domain (for the paper: the area distortion
  * `AreaDensity` of vtkConformalDiskMap's disk image) into Dirac samples for
@@ -42,9 +43,30 @@
  * the refinement stopped at MaximumNumberOfSamples, with a warning), `SecondsRefinement`,
  * `SecondsMasses`, `SecondsTotal`.
  *
+ * Sphere domain: when every point used by a triangle lies on the unit sphere (to 1e-6) and not
+ * all of them in the plane z = 0, e.g. vtkConformalSphereMap's output, the domain is the whole
+ * unit sphere (sphere.md step 2; core: Filters/Core/Sampling/SphericalSampler.h). The mesh
+ * must then be closed, counter-clockwise seen from outside and cover the sphere once, with
+ * its points on the sphere to 1e-9. The density is one positive value per triangle: a cell
+ * array as it is (select vtkConformalSphereMap's exact cell array with
+ * SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_CELLS, "AreaDensity")), a
+ * point array (the default `AreaDensity`) averaged over each triangle's three corners. The
+ * same three modes refine the spherical Delaunay triangulation (the samples' convex hull,
+ * circumcentres projected onto the sphere, sizes measured with the density along the sphere);
+ * MeshVertices keeps the mesh's points and triangles. Output: the samples on the unit sphere
+ * with the triangles of their spherical Delaunay triangulation, counter-clockwise seen from
+ * outside; `Mass` is the density integrated exactly over each sample's spherical Voronoi cell,
+ * normalized to sum to 4 pi (`SourceMass`), so that the output connects directly to
+ * vtkSphericalOTSolver. The field data are those of the plane, plus `DensityIntegral` (the
+ * integral of the density over the sphere before normalization) and `MassSumRelativeError`
+ * (how far the cells' integrals summed from it). A planar domain is never taken for a sphere
+ * domain: its behaviour is as described above.
+ *
  * Bad input (an empty domain; the density array missing, non-numeric, with several components,
- * NaN, infinite, negative or all zero; a domain that is not planar, not made of triangles, with
- * overlapping triangles or boundary loops that touch; NumberOfSamples < 3 or above
+ * NaN, infinite, negative or all zero; a domain that is neither planar nor on the unit sphere,
+ * not made of triangles, with overlapping triangles or boundary loops that touch; a sphere
+ * domain that is not closed, not counter-clockwise seen from outside or has a triangle of
+ * density 0; NumberOfSamples < 3 or above
  * MaximumNumberOfSamples; MinimumAngle outside (0, 35]; SamplingMode or SizeRule out of range)
  * is reported with vtkErrorMacro naming the problem and the offending ids; RequestData then
  * returns 0 and the output is empty. The input is never modified. Progress is reported and

@@ -11,6 +11,7 @@
 #include "OTParamConvert.h"
 #include "Pipeline/AreaPreservingPipeline.h"
 
+#include <cmath>
 #include <limits>
 #include <sstream>
 #include <string>
@@ -45,7 +46,7 @@ otparam::AreaPreservingOptions MakeOptions(vtkAreaPreservingParam* self)
 }
 
 // Port 1: the flattened disk mesh.
-void WriteDisk(const otparam::AreaPreservingResult& run, vtkPolyData* disk)
+void WriteDomainMesh(const otparam::AreaPreservingResult& run, vtkPolyData* disk)
 {
   const otparam::CompactedMesh& surface = run.conformal.surface;
   disk->SetPoints(MakePoints(run.composition.uv));
@@ -80,8 +81,104 @@ void WriteSurface(const otparam::AreaPreservingResult& run, vtkPolyData* input, 
   AddDistortionArrays(output->GetCellData(), run.figures);
 }
 
-// Port 2: the histograms (the paper's Fig. 5).
-void WriteHistograms(const otparam::AreaPreservingResult& run, int bins, vtkTable* histograms)
+// The figures both domains report under the same names.
+template <class Run>
+void WriteCommonFigures(const Run& run, int domain, vtkDataObject* figures)
+{
+  const auto& transport = run.transport.result;
+  AddIntScalar(figures, "Domain", domain);
+  AddIntScalar(figures, "Iterations", transport.iterations);
+  AddScalar(figures, "RelativeError", transport.relativeError);
+  AddIntScalar(figures, "Converged", transport.converged ? 1 : 0);
+  AddIntScalar(figures, "NumberOfSamples", static_cast<long long>(run.diracs.size()));
+  AddIntScalar(figures, "DroppedSamples", run.droppedSamples);
+  AddScalar(figures, "MassCoefficientOfVariation", run.sampling.result.massCoefficientOfVariation);
+  AddDistortionFigures(figures, run.figures);
+  AddDistortionFigures(figures, run.conformal.figures, "Conformal");
+  const auto& composition = run.composition;
+  AddScalar(
+    figures, "InterpolatedMeanAbsLogAreaRatio", composition.meanAbsLogAreaRatioInterpolated);
+  AddIntScalar(figures, "InterpolatedFlippedTriangles", composition.flippedAfterInterpolation);
+  AddIntScalar(figures, "UntangledVertices", composition.untangledVertices);
+  AddScalar(figures, "SecondsConformalMap", run.secondsConformal);
+  AddScalar(figures, "SecondsSampling", run.secondsSampling);
+  AddScalar(figures, "SecondsTransport", run.secondsTransport);
+  AddScalar(figures, "SecondsComposition", run.secondsComposition);
+  AddScalar(figures, "SecondsTotal", run.secondsTotal);
+}
+
+void WriteFigures(const otparam::AreaPreservingResult& run, vtkDataObject* figures)
+{
+  WriteCommonFigures(run, vtkAreaPreservingParam::DISK, figures);
+  AddIntScalar(figures, "FilledHoles", run.conformal.filledHoles);
+  AddScalar(figures, "FillAreaFraction", run.conformal.fillAreaFraction);
+  AddIntScalar(figures, "CorrectionSweeps", run.composition.correctionSweeps);
+}
+
+void WriteFigures(const otparam::SphereParameterizationResult& run, vtkDataObject* figures)
+{
+  WriteCommonFigures(run, vtkAreaPreservingParam::SPHERE, figures);
+  AddIntScalar(figures, "FilledHoles", 0);
+  AddScalar(figures, "FillAreaFraction", 0.0);
+  AddIntScalar(figures, "CorrectionSweeps", 0);
+}
+
+// Longitude and latitude of points on the sphere, scaled to [0, 1] (texture coordinates).
+std::vector<otparam::Vec2> LongitudeLatitude(const std::vector<otparam::Vec3>& sphere)
+{
+  std::vector<otparam::Vec2> tcoords(sphere.size());
+  for (std::size_t v = 0; v < sphere.size(); ++v)
+  {
+    const otparam::Vec3 p = sphere[v];
+    tcoords[v] = { 0.5 + std::atan2(p.y, p.x) / (2.0 * M_PI),
+      0.5 + std::asin(std::max(-1.0, std::min(1.0, p.z))) / M_PI };
+  }
+  return tcoords;
+}
+
+// Port 1 for the sphere: the area-preserving sphere mesh.
+void WriteDomainMesh(const otparam::SphereParameterizationResult& run, vtkPolyData* sphere)
+{
+  const otparam::CompactedMesh& surface = run.conformal.surface;
+  sphere->SetPoints(MakePoints(run.composition.sphere));
+  sphere->SetPolys(MakeTriangles(surface.mesh.triangles));
+  vtkPointData* pd = sphere->GetPointData();
+  pd->AddArray(MakeVec3Array("Coordinates3D", surface.mesh.points));
+  pd->AddArray(MakeVec3Array("AreaPreservingCoordinates", run.composition.sphere));
+  pd->AddArray(MakeVec3Array("ConformalCoordinates", run.conformal.map.sphere));
+  pd->AddArray(MakeOriginalPointIds(surface.originalPointIds));
+  pd->SetTCoords(
+    MakeVec2Array("SphericalTextureCoordinates", LongitudeLatitude(run.composition.sphere)));
+  AddDistortionArrays(sphere->GetCellData(), run.figures);
+}
+
+// Port 0 for the sphere: the input surface with the sphere coordinates (NaN on points used by
+// no triangle) and the per-triangle figures.
+void WriteSurface(
+  const otparam::SphereParameterizationResult& run, vtkPolyData* input, vtkPolyData* output)
+{
+  output->ShallowCopy(input);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  std::vector<otparam::Vec3> areaPreserving(input->GetNumberOfPoints(), { nan, nan, nan });
+  std::vector<otparam::Vec3> conformal(areaPreserving);
+  std::vector<otparam::Vec2> tcoords(areaPreserving.size(), { nan, nan });
+  const std::vector<otparam::Vec2> lonLat = LongitudeLatitude(run.composition.sphere);
+  const std::vector<std::int64_t>& ids = run.conformal.surface.originalPointIds;
+  for (std::size_t v = 0; v < ids.size(); ++v)
+  {
+    areaPreserving[ids[v]] = run.composition.sphere[v];
+    conformal[ids[v]] = run.conformal.map.sphere[v];
+    tcoords[ids[v]] = lonLat[v];
+  }
+  vtkPointData* pd = output->GetPointData();
+  pd->AddArray(MakeVec3Array("AreaPreservingCoordinates", areaPreserving));
+  pd->AddArray(MakeVec3Array("ConformalCoordinates", conformal));
+  pd->SetTCoords(MakeVec2Array("SphericalTextureCoordinates", tcoords));
+  AddDistortionArrays(output->GetCellData(), run.figures);
+}
+
+template <class Run>
+void WriteHistogramsOf(const Run& run, int bins, vtkTable* histograms)
 {
   const otparam::DistortionFigures& conformal = run.conformal.figures;
   AddHistogram(histograms, "ConformalAngleDistortion", conformal.angleDistortion, bins);
@@ -90,31 +187,22 @@ void WriteHistograms(const otparam::AreaPreservingResult& run, int bins, vtkTabl
   AddHistogram(histograms, "AreaPreservingLogAreaRatio", run.figures.logAreaRatio, bins);
 }
 
-// The run's figures, the same on the surface and the disk.
-void WriteFigures(const otparam::AreaPreservingResult& run, vtkDataObject* figures)
+// Writes a finished run (either domain) to the three ports, the figures on both meshes.
+template <class Run>
+void WriteRun(const Run& run, int bins, vtkPolyData* input, vtkInformationVector* outputVector)
 {
-  const otparam::OTResult& transport = run.transport.result;
-  AddIntScalar(figures, "Iterations", transport.iterations);
-  AddIntScalar(figures, "FilledHoles", run.conformal.filledHoles);
-  AddScalar(figures, "FillAreaFraction", run.conformal.fillAreaFraction);
-  AddScalar(figures, "RelativeError", transport.relativeError);
-  AddIntScalar(figures, "Converged", transport.converged ? 1 : 0);
-  AddIntScalar(figures, "NumberOfSamples", static_cast<long long>(run.diracs.size()));
-  AddIntScalar(figures, "DroppedSamples", run.droppedSamples);
-  AddScalar(figures, "MassCoefficientOfVariation", run.sampling.result.massCoefficientOfVariation);
-  AddDistortionFigures(figures, run.figures);
-  AddDistortionFigures(figures, run.conformal.figures, "Conformal");
-  const otparam::CompositionResult& composition = run.composition;
-  AddScalar(
-    figures, "InterpolatedMeanAbsLogAreaRatio", composition.meanAbsLogAreaRatioInterpolated);
-  AddIntScalar(figures, "InterpolatedFlippedTriangles", composition.flippedAfterInterpolation);
-  AddIntScalar(figures, "UntangledVertices", composition.untangledVertices);
-  AddIntScalar(figures, "CorrectionSweeps", composition.correctionSweeps);
-  AddScalar(figures, "SecondsConformalMap", run.secondsConformal);
-  AddScalar(figures, "SecondsSampling", run.secondsSampling);
-  AddScalar(figures, "SecondsTransport", run.secondsTransport);
-  AddScalar(figures, "SecondsComposition", run.secondsComposition);
-  AddScalar(figures, "SecondsTotal", run.secondsTotal);
+  vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
+  vtkPolyData* domainMesh = vtkPolyData::GetData(outputVector, 1);
+  WriteDomainMesh(run, domainMesh);
+  WriteSurface(run, input, output);
+  WriteHistogramsOf(run, bins, vtkTable::GetData(outputVector, 2));
+  vtkNew<vtkPolyData> figures;
+  WriteFigures(run, figures);
+  for (int a = 0; a < figures->GetFieldData()->GetNumberOfArrays(); ++a)
+  {
+    output->GetFieldData()->AddArray(figures->GetFieldData()->GetAbstractArray(a));
+    domainMesh->GetFieldData()->AddArray(figures->GetFieldData()->GetAbstractArray(a));
+  }
 }
 } // namespace
 
@@ -155,6 +243,12 @@ int vtkAreaPreservingParam::Execute(
   // Own parameters first: a bad one should not cost a conformal map.
   const otparam::AreaPreservingOptions options = MakeOptions(this);
   std::string error = options.check();
+  if (error.empty() && (this->Domain < AUTOMATIC || this->Domain > SPHERE))
+  {
+    std::ostringstream msg;
+    msg << "Domain must be 0 (Automatic), 1 (Disk) or 2 (Sphere); got " << this->Domain << ".";
+    error = msg.str();
+  }
   if (error.empty() && (this->NumberOfHistogramBins < 1 || this->NumberOfHistogramBins > 100000))
   {
     std::ostringstream msg;
@@ -174,24 +268,26 @@ int vtkAreaPreservingParam::Execute(
     return 0;
   }
 
+  const bool sphere = this->Domain == SPHERE ||
+    (this->Domain == AUTOMATIC && otparam::chooseDomain(soup) == otparam::Domain::Sphere);
+  if (sphere)
+  {
+    const otparam::SphereParameterizationResult run = otparam::parameterizeSphere(soup, options);
+    this->SetProgressText(nullptr);
+    if (!this->ReportStatus(run.status))
+    {
+      return 0;
+    }
+    WriteRun(run, this->NumberOfHistogramBins, input, outputVector);
+    return 1;
+  }
   const otparam::AreaPreservingResult run = otparam::parameterizeDisk(soup, options);
   this->SetProgressText(nullptr);
   if (!this->ReportStatus(run.status))
   {
     return 0;
   }
-  vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
-  vtkPolyData* disk = vtkPolyData::GetData(outputVector, 1);
-  WriteDisk(run, disk);
-  WriteSurface(run, input, output);
-  WriteHistograms(run, this->NumberOfHistogramBins, vtkTable::GetData(outputVector, 2));
-  vtkNew<vtkPolyData> figures;
-  WriteFigures(run, figures);
-  for (int a = 0; a < figures->GetFieldData()->GetNumberOfArrays(); ++a)
-  {
-    output->GetFieldData()->AddArray(figures->GetFieldData()->GetAbstractArray(a));
-    disk->GetFieldData()->AddArray(figures->GetFieldData()->GetAbstractArray(a));
-  }
+  WriteRun(run, this->NumberOfHistogramBins, input, outputVector);
   return 1;
 }
 
@@ -205,6 +301,7 @@ void vtkAreaPreservingParam::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaximumNumberOfIterations: " << this->MaximumNumberOfIterations << "\n";
   os << indent << "CenterPointId: " << this->CenterPointId << "\n";
   os << indent << "AlignPointId: " << this->AlignPointId << "\n";
+  os << indent << "Domain: " << this->Domain << "\n";
   os << indent << "FillHoles: " << this->FillHoles << "\n";
   os << indent << "AreaCorrection: " << this->AreaCorrection << "\n";
   os << indent << "MaximumCorrectionSweeps: " << this->MaximumCorrectionSweeps << "\n";

@@ -1,6 +1,6 @@
 /**
  * @class   vtkAreaPreservingParam
- * @brief   Area-preserving parameterization of a disk-like surface onto the unit disk.
+ * @brief   Area-preserving parameterization of a surface onto the unit disk or the unit sphere.
  *
  * The whole method of OTParam as one filter: vtkConformalDiskMap -> vtkAdaptiveDensitySampler
  * (on the conformal image's exact per-triangle `AreaDensity`) -> vtkSemiDiscreteOTSolver (the
@@ -14,7 +14,18 @@
  * fraction, which removes what the interpolation between a finite number of samples leaves. Both
  * figures, before and after the correction, are in the field data.
  *
- * Input: a triangle surface, genus 0, exactly one boundary loop (as for vtkConformalDiskMap).
+ * Input: a triangle surface of genus 0: disk-like (one boundary loop, or several with
+ * FillHoles) for the disk, closed for the sphere (Domain).
+ *
+ * Domain Sphere (the default Automatic picks it for a closed surface): the same chain on the
+ * unit sphere (../shared/docs/sphere.md): vtkConformalSphereMap (Moebius-balanced) ->
+ * vtkAdaptiveDensitySampler on the sphere -> vtkSphericalOTSolver (uniform sphere as source)
+ * -> composition (each sample to its cell's centroid on the sphere, mesh points by
+ * interpolation over the samples' spherical Delaunay triangulation, untangling; no area
+ * correction). `AreaPreservingCoordinates` and `ConformalCoordinates` then have 3 components
+ * (points on the unit sphere), the texture coordinates `SphericalTextureCoordinates` are
+ * longitude / latitude scaled to [0, 1], output port 1 is the sphere mesh, and the field data
+ * names are those of the disk (`Domain` tells which: 1 disk, 2 sphere).
  *
  * Output port 0: the input surface (3D points and arrays unchanged) with texture coordinates =
  * the area-preserving disk coordinates, also as point array `AreaPreservingCoordinates`
@@ -30,8 +41,8 @@
  * `InterpolatedMeanAbsLogAreaRatio`, `InterpolatedFlippedTriangles`, `UntangledVertices`,
  * `CorrectionSweeps`, `FilledHoles` and `FillAreaFraction` (see FillHoles: the holes closed
  * for the computation and the fill's share of the surface area, hence of the disk; the other
- * figures are those of the input's own triangles), and `SecondsConformalMap`, `SecondsSampling`, `SecondsTransport`,
- * `SecondsComposition`, `SecondsTotal`.
+ * figures are those of the input's own triangles), and `SecondsConformalMap`, `SecondsSampling`,
+ * `SecondsTransport`, `SecondsComposition`, `SecondsTotal`.
  *
  * Output port 1: the flattened area-preserving disk mesh: points (u, v, 0), the same triangles
  * and cell arrays, point arrays `Coordinates3D`, `ConformalCoordinates`, `vtkOriginalPointIds`.
@@ -126,6 +137,24 @@ public:
 
   ///@{
   /**
+   * Where the surface is mapped: AUTOMATIC (default: the sphere for a closed surface, the disk
+   * otherwise), DISK, or SPHERE.
+   */
+  enum DomainType
+  {
+    AUTOMATIC = 0,
+    DISK = 1,
+    SPHERE = 2
+  };
+  vtkSetMacro(Domain, int);
+  vtkGetMacro(Domain, int);
+  void SetDomainToAutomatic() { this->SetDomain(AUTOMATIC); }
+  void SetDomainToDisk() { this->SetDomain(DISK); }
+  void SetDomainToSphere() { this->SetDomain(SPHERE); }
+  ///@}
+
+  ///@{
+  /**
    * Move vertices after the interpolation so that every triangle gets its surface area
    * fraction (see the class description). Default on.
    */
@@ -164,6 +193,7 @@ protected:
   int SamplingMode = ADAPTIVE;
   double Tolerance;
   int MaximumNumberOfIterations;
+  int Domain = AUTOMATIC;
   vtkIdType CenterPointId = -1;
   vtkIdType AlignPointId = -1;
   bool FillHoles = true;

@@ -6,9 +6,12 @@
 #include "vtkStreamingDemandDrivenPipeline.h"
 
 #include "Common/Status.h"
+#include "Pipeline/DiskStages.h"
 
 #include <exception>
+#include <memory>
 #include <new>
+#include <sstream>
 
 //------------------------------------------------------------------------------
 vtkOTParamAlgorithm::vtkOTParamAlgorithm() = default;
@@ -111,6 +114,22 @@ std::function<bool(double)> vtkOTParamAlgorithm::ProgressCallback(double start, 
   return [this, start, end](double fraction)
   {
     this->UpdateProgress(start + (end - start) * std::min(1.0, std::max(0.0, fraction)));
+    return !this->GetAbortExecute();
+  };
+}
+
+//------------------------------------------------------------------------------
+std::function<bool(int, double)> vtkOTParamAlgorithm::NewtonProgressCallback(
+  const otparam::OTOptions& options)
+{
+  // Shared: the core may copy the callback, and the fraction must only grow.
+  auto fraction = std::make_shared<otparam::NewtonProgress>(options);
+  return [this, fraction](int iteration, double relativeError)
+  {
+    std::ostringstream text;
+    text << "Newton iteration " << iteration << ", relative error " << relativeError;
+    this->SetProgressText(text.str().c_str());
+    this->UpdateProgress((*fraction)(iteration, relativeError));
     return !this->GetAbortExecute();
   };
 }

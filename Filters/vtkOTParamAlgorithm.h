@@ -20,6 +20,7 @@
 #include <functional> // for the progress callbacks
 namespace otparam
 {
+struct OTOptions;
 struct Status;
 }
 #endif
@@ -65,6 +66,13 @@ protected:
    * and the answer is whether to go on (AbortExecute not set).
    */
   std::function<bool(double)> ProgressCallback(double start = 0.0, double end = 0.95);
+
+  /**
+   * A transport solve's progress callback (OTOptions::progress): the progress text names the
+   * Newton iteration and its relative error, the fraction is otparam::NewtonProgress's. Clear
+   * the text with SetProgressText(nullptr) once the solve is over.
+   */
+  std::function<bool(int, double)> NewtonProgressCallback(const otparam::OTOptions& options);
 #endif
 
   // Set by ReportStatus when the core stopped on AbortExecute: the outputs are then emptied and

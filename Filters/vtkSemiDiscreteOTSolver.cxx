@@ -35,58 +35,23 @@ using namespace otparam_vtk;
 constexpr int NumberOfOutputs = 5;
 
 // Port 0: the points (z ignored) and their positive point array Mass; "" or the message.
-std::string ReadDiracs(
+std::string ReadPlanarDiracs(
   vtkPointSet* input, std::vector<otparam::Vec2>& diracs, std::vector<double>& masses)
 {
-  const vtkIdType n = (input && input->GetPoints()) ? input->GetNumberOfPoints() : 0;
-  if (n == 0)
+  std::vector<otparam::Vec3> points;
+  const std::string error = ReadDiracs(input, points, masses);
+  if (!error.empty())
   {
-    return "The Diracs input (port 0) has no points; the target measure needs at least one "
-           "point with a positive Mass.";
+    return error;
   }
-  vtkAbstractArray* massAbstract = input->GetPointData()->GetAbstractArray("Mass");
-  if (!massAbstract)
+  diracs.resize(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i)
   {
-    return "The Diracs input (port 0) has no point array 'Mass'; each point needs a positive "
-           "Mass.";
-  }
-  std::ostringstream msg;
-  vtkDataArray* massArray = vtkDataArray::SafeDownCast(massAbstract);
-  if (!massArray)
-  {
-    msg << "The point array 'Mass' of the Diracs input is not numeric (it is a "
-        << massAbstract->GetClassName() << "); it must hold one positive number per point.";
-    return msg.str();
-  }
-  if (massArray->GetNumberOfComponents() != 1)
-  {
-    msg << "The point array 'Mass' of the Diracs input has " << massArray->GetNumberOfComponents()
-        << " components; it must have exactly 1.";
-    return msg.str();
-  }
-  diracs.resize(static_cast<std::size_t>(n));
-  masses.resize(static_cast<std::size_t>(n));
-  std::vector<vtkIdType> badCoordinates;
-  for (vtkIdType i = 0; i < n; ++i)
-  {
-    double p[3];
-    input->GetPoint(i, p);
-    if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
-    {
-      badCoordinates.push_back(i);
-    }
-    diracs[i] = { p[0], p[1] };
-    masses[i] = massArray->GetComponent(i, 0);
-  }
-  if (!badCoordinates.empty())
-  {
-    msg << "The Diracs input has NaN or infinite coordinates at point id(s) "
-        << otparam::idList(badCoordinates) << ".";
-    return msg.str();
+    diracs[i] = { points[i].x, points[i].y };
   }
   // The core's check (finite, positive, pairwise distinct) names the offending ids.
-  const std::string error = otparam::validateDiracs(diracs, masses);
-  return error.empty() ? error : "Invalid Diracs input (port 0): " + error;
+  const std::string invalid = otparam::validateDiracs(diracs, masses);
+  return invalid.empty() ? invalid : "Invalid Diracs input (port 0): " + invalid;
 }
 
 // Port 1: a planar triangulated convex region with an optional positive point array Density,
@@ -239,7 +204,7 @@ int vtkSemiDiscreteOTSolver::Execute(
   std::unique_ptr<otparam::SourceMeasure> source;
   if (error.empty())
   {
-    error = ReadDiracs(input, diracs, masses);
+    error = ReadPlanarDiracs(input, diracs, masses);
   }
   if (error.empty())
   {
@@ -251,15 +216,7 @@ int vtkSemiDiscreteOTSolver::Execute(
     return 0;
   }
 
-  otparam::NewtonProgress fraction(options);
-  options.progress = [this, &fraction](int iteration, double relativeError)
-  {
-    std::ostringstream text;
-    text << "Newton iteration " << iteration << ", relative error " << relativeError;
-    this->SetProgressText(text.str().c_str());
-    this->UpdateProgress(fraction(iteration, relativeError));
-    return !this->GetAbortExecute();
-  };
+  options.progress = this->NewtonProgressCallback(options);
   const otparam::TransportStage stage =
     otparam::runTransportStage(*source, diracs, masses, options, this->MaximumArcAngle);
   this->SetProgressText(nullptr);
@@ -287,21 +244,10 @@ int vtkSemiDiscreteOTSolver::Execute(
   WriteDiscontinuities(
     stage, diracs, SupportTriangles(input), vtkPolyData::GetData(outputVector, 4));
 
-  AddIntScalar(diracsOutput, "Iterations", result.iterations);
-  AddScalar(diracsOutput, "RelativeError", result.relativeError);
-  AddIntScalar(diracsOutput, "Converged", result.converged ? 1 : 0);
-  diracsOutput->GetFieldData()->AddArray(
-    MakeDoubleArray("GradientNormHistory", result.gradientNormHistory));
-  diracsOutput->GetFieldData()->AddArray(
-    MakeDoubleArray("StepLengthHistory", result.stepLengthHistory));
+  AddNewtonReport(diracsOutput, result);
   AddScalar(diracsOutput, "SourceMass", source->totalMass());
-  AddScalar(diracsOutput, "SecondsTriangulation", result.secondsTriangulation);
-  AddScalar(diracsOutput, "SecondsIntegration", result.secondsIntegration);
-  AddScalar(diracsOutput, "SecondsAssembly", result.secondsAssembly);
-  AddScalar(diracsOutput, "SecondsSolve", result.secondsSolve);
   AddScalar(diracsOutput, "SecondsOutput", Seconds(startOutput));
   AddScalar(diracsOutput, "SecondsTotal", Seconds(startTotal));
-  AddString(diracsOutput, "StopReason", result.message);
   return 1;
 }
 

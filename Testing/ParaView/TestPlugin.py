@@ -1,8 +1,10 @@
 """Loads OTParam.so into ParaView and runs its filters: Semi-Discrete OT Solver on Diracs read
-from a .vtp, Conformal Disk Map on a triangulated ParaView Plane, Adaptive Density Sampler on
+from a .vtp, Spherical OT Solver on Diracs on the unit sphere read from a .vtp, Conformal Disk Map on a triangulated ParaView Plane, Adaptive Density Sampler on
 a triangulated disk read from a .vtp (and the OT solver on its samples), Area-Preserving
-Parameterization on a bumpy plane (all three ports) and on a closed sphere (its error in the
-output window, empty outputs, the filter usable again).
+Parameterization on a bumpy plane (all three ports), on a closed sphere (Domain Automatic: the
+sphere path; Domain Disk: its error in the output window, empty outputs, the filter usable
+again), Conformal Sphere Map on the closed sphere and the sphere chain (Adaptive Density Sampler
+on its output, then the Spherical OT Solver).
 
 Usage: pvpython|pvbatch TestPlugin.py <OTParam.so> <work dir>
 In the GUI (paraview --script=...), the same arguments come from the environment variables
@@ -108,6 +110,72 @@ limited = servermanager.Fetch(solver)
 check(limited.GetFieldData().GetArray("Converged").GetValue(0) == 0,
       "MaximumNumberOfIterations = 1: Converged == 0")
 solver.MaximumNumberOfIterations = 200
+
+# ---- Spherical OT Solver on 200 Fibonacci Diracs on the unit sphere, written by this test,
+# masses of contrast 1e2 (log-linear in z).
+sphere_n = 200
+sphere_points = vtkPoints()
+sphere_points.SetDataTypeToDouble()
+sphere_mass = vtkDoubleArray()
+sphere_mass.SetName("Mass")
+sphere_vertices = vtkCellArray()
+golden = math.pi * (3.0 - math.sqrt(5.0))
+for i in range(sphere_n):
+    z = 1.0 - (2.0 * i + 1.0) / sphere_n
+    r = math.sqrt(1.0 - z * z)
+    sphere_vertices.InsertNextCell(1, [sphere_points.InsertNextPoint(
+        r * math.cos(golden * i), r * math.sin(golden * i), z)])
+    sphere_mass.InsertNextValue(10.0 ** (1.0 + z))
+sphere_diracs = vtkPolyData()
+sphere_diracs.SetPoints(sphere_points)
+sphere_diracs.SetVerts(sphere_vertices)
+sphere_diracs.GetPointData().AddArray(sphere_mass)
+sphere_vtp = os.path.join(work_dir, "sphere_diracs.vtp")
+writer.SetFileName(sphere_vtp)
+writer.SetInputData(sphere_diracs)
+check(writer.Write() == 1, f"wrote {sphere_vtp}")
+
+check("SphericalOTSolver" in globals(), "LoadPlugin defines SphericalOTSolver")
+spherical = SphericalOTSolver(Diracs=XMLPolyDataReader(FileName=[sphere_vtp]))
+check(spherical.SMProxy.GetXMLLabel() == "Spherical OT Solver", "label 'Spherical OT Solver'")
+hints = spherical.SMProxy.GetHints()
+menu = hints.FindNestedElementByName("ShowInMenu") if hints else None
+check(menu is not None and menu.GetAttribute("category") == "Optimal Transport",
+      "Spherical OT Solver is in the menu category 'Optimal Transport'")
+check(abs(spherical.Tolerance - 1e-10) < 1e-25 and spherical.MaximumNumberOfIterations == 200
+      and abs(spherical.MaximumArcAngle - 0.05) < 1e-15,
+      "Spherical OT Solver: Tolerance 1e-10, MaximumNumberOfIterations 200, MaximumArcAngle 0.05")
+names = [spherical.SMProxy.GetOutputPortName(i)
+         for i in range(spherical.SMProxy.GetNumberOfOutputPorts())]
+check(names == ["Diracs", "Power Diagram", "Polytope", "Convex Hull"],
+      f"Spherical OT Solver output port names {names}")
+spherical.UpdatePipeline()
+sout = servermanager.Fetch(spherical)
+sfd = sout.GetFieldData()
+check(sfd.GetArray("Converged") is not None and sfd.GetArray("Converged").GetValue(0) == 1
+      and sfd.GetArray("RelativeError").GetValue(0) <= 1e-10,
+      "Spherical OT Solver: converged, RelativeError <= 1e-10")
+scell = sout.GetPointData().GetArray("CellMass")
+total = math.fsum(scell.GetValue(i) for i in range(sphere_n)) if scell else 0.0
+check(sout.GetNumberOfPoints() == sphere_n and sout.GetNumberOfPolys() == 2 * sphere_n - 4
+      and abs(total - 4.0 * math.pi) <= 1e-12 * 4.0 * math.pi,
+      f"Spherical OT Solver: {sphere_n} Diracs, 2n - 4 triangles, CellMass sums to 4 pi ({total!r})")
+check(sfd.GetArray("LargestTransportDegrees") is not None, "field data LargestTransportDegrees")
+sdiagram = servermanager.Fetch(spherical, idx=1)
+sids = sdiagram.GetCellData().GetArray("DiracId")
+check(sdiagram.GetNumberOfCells() == sphere_n and sids is not None
+      and sorted(int(sids.GetValue(c)) for c in range(sphere_n)) == list(range(sphere_n)),
+      "Spherical OT Solver Power Diagram: one polygon per Dirac, DiracId covers every Dirac")
+check(servermanager.Fetch(spherical, idx=2).GetNumberOfCells() == sphere_n
+      and servermanager.Fetch(spherical, idx=3).GetNumberOfCells() == 2 * sphere_n - 4,
+      "Spherical OT Solver: Polytope has one face per Dirac, Convex Hull 2n - 4 triangles")
+print(f"spherical: {int(sfd.GetArray('Iterations').GetValue(0))} Newton iterations, relative "
+      f"error {sfd.GetArray('RelativeError').GetValue(0):.3e}", flush=True)
+spherical.MaximumNumberOfIterations = 1
+spherical.UpdatePipeline()
+check(servermanager.Fetch(spherical).GetFieldData().GetArray("Converged").GetValue(0) == 0,
+      "Spherical OT Solver, MaximumNumberOfIterations = 1: Converged == 0")
+spherical.MaximumNumberOfIterations = 200
 
 # ---- Conformal Disk Map on ParaView's own Plane source, triangulated (a square is a disk).
 check("ConformalDiskMap" in globals(), "LoadPlugin defines ConformalDiskMap")
@@ -307,9 +375,75 @@ if os.environ.get("OTPARAM_SHARED_DATA_DIR"):
     Delete(bunny)
     Delete(bunny_reader)
 
-# ---- Bad input in a ParaView pipeline: a closed surface. The filter's error reaches the
-# output window (ParaView's Output Messages), the outputs stay empty, and the same filter
-# works once it gets a disk-like surface.
+# ---- A closed surface: Domain Automatic (the default) maps it onto the unit sphere.
+closed = Triangulate(Input=Sphere(ThetaResolution=16, PhiResolution=12))
+on_sphere = AreaPreservingParameterization(Input=closed)
+check(on_sphere.Domain in (0, "Automatic"),
+      f"Area-Preserving Parameterization: Domain defaults to Automatic ({on_sphere.Domain!r})")
+on_sphere.NumberOfSamples = 500
+on_sphere.UpdatePipeline()
+sphere_out = servermanager.Fetch(on_sphere, idx=0)
+sphere_mesh = servermanager.Fetch(on_sphere, idx=1)
+sfigure = {name: sphere_out.GetFieldData().GetArray(name).GetValue(0)
+           for name in ("Domain", "Converged", "FlippedTriangles", "RelativeError")
+           if sphere_out.GetFieldData().GetArray(name) is not None}
+check(sfigure.get("Domain") == 2 and sfigure.get("Converged") == 1
+      and sfigure.get("FlippedTriangles") == 0,
+      f"closed surface, Domain Automatic: the sphere path, converged, no flip ({sfigure})")
+sphere_radius_error = max((abs(math.sqrt(sum(c * c for c in sphere_mesh.GetPoint(i))) - 1.0)
+                           for i in range(sphere_mesh.GetNumberOfPoints())), default=math.inf)
+check(sphere_mesh.GetNumberOfPoints() == sphere_out.GetNumberOfPoints()
+      and sphere_radius_error <= 1e-12,
+      f"closed surface: port 1 on the unit sphere ({sphere_radius_error:.1e})")
+sphere_tcoords = sphere_out.GetPointData().GetTCoords()
+check(sphere_tcoords is not None and sphere_tcoords.GetName() == "SphericalTextureCoordinates"
+      and sphere_out.GetPointData().GetArray("AreaPreservingCoordinates").GetNumberOfComponents()
+      == 3, "closed surface: longitude/latitude texture coordinates, 3D coordinates")
+
+# ---- Conformal Sphere Map on the same closed surface, and the sphere chain after it.
+check("ConformalSphereMap" in globals(), "LoadPlugin defines ConformalSphereMap")
+sphere_map = ConformalSphereMap(Input=closed)
+check(sphere_map.SMProxy.GetXMLLabel() == "Conformal Sphere Map", "label 'Conformal Sphere Map'")
+hints = sphere_map.SMProxy.GetHints()
+menu = hints.FindNestedElementByName("ShowInMenu") if hints else None
+check(menu is not None and menu.GetAttribute("category") == "Optimal Transport",
+      "Conformal Sphere Map is in the menu category 'Optimal Transport'")
+check(sphere_map.PunctureTriangleId == -1 and sphere_map.MaximumBalanceIterations == 100
+      and abs(sphere_map.BalanceTolerance - 1e-10) < 1e-25,
+      "Conformal Sphere Map defaults: PunctureTriangleId -1, BalanceTolerance 1e-10, "
+      "MaximumBalanceIterations 100")
+sphere_map.UpdatePipeline()
+mapped = servermanager.Fetch(sphere_map)
+mfd = mapped.GetFieldData()
+check(mapped.GetNumberOfPoints() == servermanager.Fetch(closed).GetNumberOfPoints()
+      and mfd.GetArray("FlippedTriangles") is not None
+      and mfd.GetArray("FlippedTriangles").GetValue(0) == 0
+      and mfd.GetArray("MaximumRadiusError").GetValue(0) <= 1e-12,
+      "Conformal Sphere Map: every point on the unit sphere, no flipped triangle")
+check(mapped.GetPointData().GetArray("AreaDensity") is not None
+      and mapped.GetCellData().GetArray("AreaDensity") is not None
+      and mfd.GetArray("MeanAngleDistortion") is not None
+      and mfd.GetArray("MaximumAngleDistortion") is not None,
+      "Conformal Sphere Map: AreaDensity per point and cell, angle distortion figures")
+sphere_samples = AdaptiveDensitySampler(Input=sphere_map)
+sphere_samples.Density = ["CELLS", "AreaDensity"]
+sphere_samples.NumberOfSamples = 400
+sphere_ot = SphericalOTSolver(Diracs=sphere_samples)
+sphere_ot.UpdatePipeline()
+drawn = servermanager.Fetch(sphere_samples)
+drawn_mass = drawn.GetPointData().GetArray("Mass")
+mass_sum = math.fsum(drawn_mass.GetValue(i) for i in range(drawn_mass.GetNumberOfTuples())) \
+    if drawn_mass else 0.0
+check(drawn.GetNumberOfPoints() > 300 and abs(mass_sum - 4 * math.pi) <= 1e-12,
+      f"Adaptive Density Sampler on the sphere: Mass sums to 4 pi ({mass_sum!r})")
+ot_fd = servermanager.Fetch(sphere_ot).GetFieldData()
+check(ot_fd.GetArray("Converged") is not None and ot_fd.GetArray("Converged").GetValue(0) == 1
+      and ot_fd.GetArray("RelativeError").GetValue(0) <= 1e-10,
+      "Spherical OT Solver on the sphere samples: converged to 1e-10")
+
+# ---- Bad input in a ParaView pipeline: a closed surface with Domain Disk. The filter's error
+# reaches the output window (ParaView's Output Messages), the outputs stay empty, and the same
+# filter works once it gets a disk-like surface.
 from vtkmodules.vtkCommonCore import vtkCommand, vtkOutputWindow  # noqa: E402
 messages = []
 output_window = vtkOutputWindow.GetInstance()
@@ -321,19 +455,40 @@ def record_error(obj, event, text):
 
 record_error.CallDataType = "string0"  # Python observers get the text only when typed
 observer = output_window.AddObserver(vtkCommand.ErrorEvent, record_error)
-closed = Triangulate(Input=Sphere(ThetaResolution=16, PhiResolution=12))
 broken = AreaPreservingParameterization(Input=closed)
 broken.NumberOfSamples = 500
+broken.Domain = "Disk"
 broken.UpdatePipeline()
 check(servermanager.Fetch(broken, idx=0).GetNumberOfPoints() == 0
       and servermanager.Fetch(broken, idx=2).GetNumberOfRows() == 0,
-      "closed surface: the outputs stay empty")
+      "closed surface, Domain Disk: the outputs stay empty")
 check(any("conformal map:" in m and "closed" in m for m in messages),
-      f"closed surface: the filter's error reaches the output window ({messages[:1]})")
+      f"closed surface, Domain Disk: the filter's error reaches the output window "
+      f"({messages[:1]})")
 broken.Input = bumps
 broken.UpdatePipeline()
 check(servermanager.Fetch(broken, idx=0).GetNumberOfPoints() == 31 * 31,
       "the same filter works once given a disk-like surface")
+
+# The Conformal Sphere Map on the (open) bumpy plane: its error names the boundary.
+messages.clear()
+open_map = ConformalSphereMap(Input=bumps)
+open_map.UpdatePipeline()
+check(servermanager.Fetch(open_map).GetNumberOfPoints() == 0,
+      "Conformal Sphere Map, open surface: the output stays empty")
+check(any("closed" in m and "boundary" in m for m in messages),
+      f"Conformal Sphere Map, open surface: the error reaches the output window "
+      f"({messages[:1]})")
+
+# The Spherical OT Solver on the plane's points (not on the sphere): its error names them.
+messages.clear()
+off_sphere = SphericalOTSolver(Diracs=reader)
+off_sphere.UpdatePipeline()
+check(servermanager.Fetch(off_sphere).GetNumberOfPoints() == 0,
+      "Spherical OT Solver, Diracs off the sphere: the outputs stay empty")
+check(any("not on the unit sphere" in m for m in messages),
+      f"Spherical OT Solver, Diracs off the sphere: the error reaches the output window "
+      f"({messages[:1]})")
 output_window.RemoveObserver(observer)
 
 if os.environ.get("OTPARAM_SCREENSHOT") == "1":

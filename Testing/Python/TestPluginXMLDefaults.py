@@ -5,7 +5,9 @@ Plugin/Fragments inlined) against the VTK classes they describe:
   equal to GetX() of a fresh object of the proxy's class (the C++ defaults are the truth), and
   that default lies inside the property's range, enumeration or boolean domain;
 * a property that several proxies define has the same label, command, type and domains in all
-  of them, unless the proxy is listed in OWN_DOMAINS with the reason.
+  of them, unless the proxy is listed in OWN_DOMAINS with the reason;
+* every proxy of EXPECTED_PROXIES (the public names of interface.md) is defined, with its class,
+  its label and the menu category "Optimal Transport".
 
 Arguments: the generated XML files, or directories holding them."""
 
@@ -26,6 +28,17 @@ OWN_DOMAINS = {
     ("ConformalDiskMap", "MaximumNumberOfIterations"):
         "boundary-angle iterations, of which 0 (boundary-first flattening only) is valid; the "
         "transport needs at least one Newton iteration",
+}
+
+# Proxy name -> (class, label), as interface.md fixes them.
+EXPECTED_PROXIES = {
+    "ConformalDiskMap": ("vtkConformalDiskMap", "Conformal Disk Map"),
+    "AdaptiveDensitySampler": ("vtkAdaptiveDensitySampler", "Adaptive Density Sampler"),
+    "SemiDiscreteOTSolver": ("vtkSemiDiscreteOTSolver", "Semi-Discrete OT Solver"),
+    "AreaPreservingParameterization": ("vtkAreaPreservingParam",
+                                       "Area-Preserving Parameterization"),
+    "SphericalOTSolver": ("vtkSphericalOTSolver", "Spherical OT Solver"),
+    "ConformalSphereMap": ("vtkConformalSphereMap", "Conformal Sphere Map"),
 }
 
 NUMERIC = {"IntVectorProperty": int, "IdTypeVectorProperty": int, "DoubleVectorProperty": float}
@@ -95,6 +108,8 @@ checked = 0
 proxies = 0
 # property name -> [(proxy name, file, (tag, label, command), domains)]
 shared = {}
+# proxy name -> (class, label, menu category)
+found = {}
 for path in files:
     with open(path, encoding="utf-8") as stream:
         text = stream.read()
@@ -108,6 +123,8 @@ for path in files:
     for proxy in root.iter("SourceProxy"):
         proxies += 1
         name, cls = proxy.get("name"), proxy.get("class")
+        menu = proxy.find("Hints/ShowInMenu")
+        found[name] = (cls, proxy.get("label"), menu.get("category") if menu is not None else None)
         factory = getattr(otparam, cls or "", None)
         if factory is None:
             problem(f"{path}: proxy {name}: class {cls!r} is not in the otparam package")
@@ -141,6 +158,13 @@ for path in files:
                 problem(f"{where}: XML default_values {default} but "
                         f"{cls}.Get{command[3:]}() = {getter()}")
             check_default(where, prop, kind, value)
+
+for name, (cls, label) in EXPECTED_PROXIES.items():
+    if name not in found:
+        problem(f"no proxy {name} ({label}, {cls}) in the generated XML files")
+    elif found[name] != (cls, label, "Optimal Transport"):
+        problem(f"proxy {name}: (class, label, menu category) {found[name]} but "
+                f"{(cls, label, 'Optimal Transport')} expected")
 
 # One vocabulary: a property name means the same thing (label, command, domains) everywhere.
 for key, reason in OWN_DOMAINS.items():

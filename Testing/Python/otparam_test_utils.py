@@ -58,6 +58,34 @@ def random_disk_points(n, seed, radius=0.95):
     return points
 
 
+def fibonacci_sphere_points(n):
+    """n points spread evenly on the unit sphere (the Fibonacci lattice), as (x, y, z)."""
+    golden = math.pi * (3.0 - math.sqrt(5.0))
+    points = []
+    for i in range(n):
+        z = 1.0 - (2.0 * i + 1.0) / n
+        r = math.sqrt(max(0.0, 1.0 - z * z))
+        points.append((r * math.cos(golden * i), r * math.sin(golden * i), z))
+    return points
+
+
+def random_sphere_points(n, seed):
+    """n points uniform on the unit sphere (normalized Gaussians, fixed seed), as (x, y, z)."""
+    rng = random.Random(seed)
+    points = []
+    while len(points) < n:
+        p = [rng.gauss(0.0, 1.0) for _ in range(3)]
+        r = math.sqrt(sum(c * c for c in p))
+        if r > 1e-3:
+            points.append(tuple(c / r for c in p))
+    return points
+
+
+def make_sphere_diracs(points, masses):
+    """vtkPolyData with the given (x, y, z) points and point array Mass."""
+    return make_diracs([p[:2] for p in points], masses, z=[p[2] for p in points])
+
+
 def make_diracs(points, masses, z=None):
     """vtkPolyData with the given (x, y) points (z = 0 unless given) and point array Mass."""
     vtk_points = vtkPoints()

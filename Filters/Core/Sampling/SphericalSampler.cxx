@@ -427,7 +427,7 @@ void relax(const SphericalDensityField& field, double power, bool equalizeMass, 
         if (cell.size() >= 3)
         {
           field.integrate(
-            cell, samples[i], hints[i], power, scratch, weighted[i], &moment[i], &mass[i], &area[i]);
+            cell, samples[i], hints[i], plainStep ? knobd("OTP_PPOW", power) : knobd("OTP_POW", power), scratch, weighted[i], &moment[i], &mass[i], &area[i]);
         }
       }
     }

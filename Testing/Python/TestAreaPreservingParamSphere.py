@@ -1,0 +1,118 @@
+"""vtkAreaPreservingParam on closed surfaces (Domain Automatic and Sphere, sphere.md): the
+shared spot cow goes to the unit sphere with the transport converged to 1e-10, no flipped
+triangle, points on the sphere to 1e-12, area-weighted mean |log area ratio| <= 0.01, and
+field data that the reference scorer (param_metrics.py --sphere) reproduces to 1e-9; the
+texture coordinates are longitude / latitude in [0, 1]. Bad domains: an open surface with
+Domain Sphere, a closed one with Domain Disk, a torus (genus named), two spheres (components
+named), Domain 7; each one error, empty outputs, the input untouched."""
+
+import math
+
+import numpy as np
+from otparam import vtkAreaPreservingParam
+from otparam_test_utils import (MessageRecorder, check, check_failed_run, field_value, finish,
+                                make_domain, param_metrics, read_mesh, ring_disk, same,
+                                shared_mesh, snapshot)
+from vtkmodules.util.numpy_support import vtk_to_numpy
+from vtkmodules.vtkCommonCore import vtkCommand
+from vtkmodules.vtkCommonExecutionModel import vtkAlgorithm
+
+scorer = param_metrics()
+
+
+def triangles_of(data):
+    return vtk_to_numpy(data.GetPolys().GetConnectivityArray()).reshape(-1, 3)
+
+
+def run(surface, **properties):
+    f = vtkAreaPreservingParam()
+    for name, value in properties.items():
+        getattr(f, "Set" + name)(value)
+    f.SetInputData(surface)
+    f.Update()
+    return f
+
+
+def check_sphere_map(name, surface, area_bound):
+    before = snapshot(surface)
+    f = run(surface)
+    out, sphere = f.GetOutput(0), f.GetOutput(1)
+    check(same(snapshot(surface), before), f"{name}: input untouched")
+    check(field_value(out, "Domain") == 2, f"{name}: Automatic picked the sphere")
+    check(field_value(out, "Converged") == 1, f"{name}: transport converged")
+    check(field_value(out, "RelativeError") <= 1e-10, f"{name}: relative error <= 1e-10")
+    check(field_value(out, "FlippedTriangles") == 0, f"{name}: no flipped triangle")
+    points = vtk_to_numpy(sphere.GetPoints().GetData())
+    radius_error = np.abs(np.linalg.norm(points, axis=1) - 1.0).max()
+    check(radius_error <= 1e-12, f"{name}: points on the unit sphere ({radius_error:.1e})")
+    coordinates = vtk_to_numpy(out.GetPointData().GetArray("AreaPreservingCoordinates"))
+    check(coordinates.shape[1] == 3, f"{name}: AreaPreservingCoordinates has 3 components")
+    tcoords = vtk_to_numpy(out.GetPointData().GetTCoords())
+    check(tcoords.min() >= 0.0 and tcoords.max() <= 1.0, f"{name}: texture coordinates in [0, 1]")
+    mean = field_value(out, "MeanAbsLogAreaRatio")
+    print(f"{name}: area {mean:.4f} (interpolated "
+          f"{field_value(out, 'InterpolatedMeanAbsLogAreaRatio'):.4f}), angle "
+          f"{field_value(out, 'MeanAngleDistortion'):.2f} deg (conformal "
+          f"{field_value(out, 'ConformalMeanAngleDistortion'):.2f}), "
+          f"{int(field_value(out, 'NumberOfSamples'))} samples, "
+          f"{int(field_value(out, 'Iterations'))} iterations, "
+          f"{field_value(out, 'SecondsTotal'):.2f} s", flush=True)
+    check(mean <= area_bound, f"{name}: mean |log area ratio| {mean:.4f} <= {area_bound}")
+    mesh_points = vtk_to_numpy(surface.GetPoints().GetData()).astype(float)
+    reference = scorer.score_sphere(mesh_points, triangles_of(surface), coordinates)
+    for field, key in (("MeanAbsLogAreaRatio", "area_mean_abs_log"),
+                       ("MeanAngleDistortion", "angle_mean_abs_deg"),
+                       ("FlippedTriangles", "flips")):
+        check(abs(field_value(out, field) - reference[key]) <= 1e-9 * max(1.0, reference[key]),
+              f"{name}: {field} agrees with the scorer ({field_value(out, field)} vs "
+              f"{reference[key]})")
+
+
+def check_refused(name, surface, words, **properties):
+    before = snapshot(surface)
+    f = vtkAreaPreservingParam()
+    for prop, value in properties.items():
+        getattr(f, "Set" + prop)(value)
+    f.SetInputData(surface)
+    errors = MessageRecorder(f, vtkCommand.ErrorEvent)
+    executive_errors = MessageRecorder(f.GetExecutive(), vtkCommand.ErrorEvent)
+    f.Update()
+    check_failed_run(name, errors, executive_errors, words)
+    check(f.GetOutput(0).GetNumberOfPoints() == 0 and f.GetOutput(1).GetNumberOfPoints() == 0,
+          f"{name}: outputs empty")
+    check(same(snapshot(surface), before), f"{name}: input untouched")
+
+
+def torus(rings=24, sectors=32):
+    points = [((1.0 + 0.4 * math.cos(v)) * math.cos(u), (1.0 + 0.4 * math.cos(v)) * math.sin(u),
+               0.4 * math.sin(v))
+              for i in range(rings) for j in range(sectors)
+              for u, v in [(2 * math.pi * i / rings, 2 * math.pi * j / sectors)]]
+    triangles = []
+    for i in range(rings):
+        for j in range(sectors):
+            a, b = i * sectors + j, ((i + 1) % rings) * sectors + j
+            c, d = ((i + 1) % rings) * sectors + (j + 1) % sectors, i * sectors + (j + 1) % sectors
+            triangles += [(a, b, c), (a, c, d)]
+    return make_domain(points, triangles)
+
+
+def octahedron(offset=(0.0, 0.0, 0.0)):
+    p = [(1, 0, 0), (-1, 0, 0), (0, 1, 0), (0, -1, 0), (0, 0, 1), (0, 0, -1)]
+    t = [(0, 2, 4), (2, 1, 4), (1, 3, 4), (3, 0, 4), (2, 0, 5), (1, 2, 5), (3, 1, 5), (0, 3, 5)]
+    return [tuple(a + b for a, b in zip(q, offset)) for q in p], t
+
+
+spot = read_mesh(shared_mesh("spot_closed_3k.obj"))
+check_sphere_map("spot", spot, 0.01)
+
+points, triangles = ring_disk(8, lambda t, a: (t * math.cos(a), t * math.sin(a), 0.0))
+check_refused("open surface, Domain Sphere", make_domain(points, triangles), ["closed"], Domain=2)
+check_refused("closed surface, Domain Disk", spot, ["boundary"], Domain=1)
+check_refused("torus", torus(), ["genus 1"])
+p1, t1 = octahedron()
+p2, t2 = octahedron((5.0, 0.0, 0.0))
+check_refused("two spheres", make_domain(p1 + p2, t1 + [tuple(v + 6 for v in t) for t in t2]),
+              ["component"])
+check_refused("Domain 7", spot, ["domain"], Domain=7)
+finish()
