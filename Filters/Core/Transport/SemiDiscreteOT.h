@@ -48,6 +48,10 @@ struct OTResult : NewtonReport
   std::vector<Vec2> centroids;  // barycentre of each clipped power cell (density-weighted)
 };
 
+// The masses scaled so that they sum to `total` (the source's mass) to the last bit that
+// matters: the transport's gauge cell absorbs any difference.
+std::vector<double> massesScaledTo(const std::vector<double>& masses, double total);
+
 // What is wrong with a value of the options or the arcs' angle (named as the filters'
 // properties), or "".
 std::string checkTransportOptions(const OTOptions& options, double maximumArcAngle);

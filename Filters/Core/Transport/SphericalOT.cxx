@@ -20,8 +20,6 @@ double secondsSince(Clock::time_point t0)
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-constexpr double FourPi = 4.0 * M_PI;
-
 struct Evaluation : NewtonEvaluation
 {
   std::vector<Vec3> moment;
@@ -238,12 +236,7 @@ SphericalOTResult solveSphericalOT(
 {
   SphericalOTResult result;
   const int n = static_cast<int>(diracs.size());
-  const double total = std::accumulate(masses.begin(), masses.end(), 0.0);
-  result.mass.resize(n);
-  for (int i = 0; i < n; ++i)
-  {
-    result.mass[i] = masses[i] * (FourPi / total);
-  }
+  result.mass = massesScaledTo(masses, 4.0 * M_PI);
   std::vector<Height> psi(n, Height(0.0L));
   SphericalPowerDiagram diagram;
   Evaluation ev;
