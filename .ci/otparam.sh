@@ -73,6 +73,11 @@ run_main() {
   log "main job: area-preserving parameterization ${*:-of the built-in hand-like surface} -> $output"
   PYTHONPATH="$build/lib/python3/dist-packages${PYTHONPATH:+:$PYTHONPATH}" \
     "$python" "$repo/Examples/area_preserving_demo.py" "$output" "$@"
+  if [ $# -eq 0 ]; then
+    log "main job: the built-in closed surface onto the unit sphere -> $output/sphere"
+    PYTHONPATH="$build/lib/python3/dist-packages${PYTHONPATH:+:$PYTHONPATH}" \
+      "$python" "$repo/Examples/sphere_demo.py" "$output/sphere"
+  fi
 }
 
 run_tests() {

@@ -6,7 +6,8 @@ every output (.vtp, .csv) and the paper's figure set (PNG).
 
 Without --mesh the surface is a built-in one generated here: a hand-like height field (a palm
 and five tall, narrow fingers) whose conformal image shrinks the finger tips by a factor of
-~1e5 in area. --mesh takes any surface VTK reads (.vtp, .vtk, .ply, .stl, .obj) or an .off.
+~1e5 in area. --mesh takes any surface VTK reads (.vtp, .vtk, .ply, .stl, .obj) or an .off;
+a closed one goes to the unit sphere (the outputs of Examples/sphere_demo.py).
 Progress is printed as the stages run. Written to OUTPUT_DIR (default ./otparam-output):
 - area_preserving_surface.vtp: the surface with texture coordinates AreaPreservingCoordinates,
   ConformalCoordinates, per-triangle LogAreaRatio and AngleDistortion, every figure as field
@@ -360,6 +361,12 @@ def main():
     out = param.GetOutput()
     if out.GetNumberOfPoints() == 0:
         sys.exit("the parameterization failed (see the error above)")
+    if out.GetFieldData().GetArray("Domain").GetValue(0) == 2:
+        # A closed surface went to the sphere (Domain Automatic).
+        from sphere_demo import write_sphere_outputs
+        print(f"closed surface: mapped onto the unit sphere in {time.perf_counter() - start:.2f} s",
+              flush=True)
+        return write_sphere_outputs(param, args.output, None if args.no_picture else args.size)
     print(f"done in {time.perf_counter() - start:.2f} s: {summary(out)}", flush=True)
     write_vtp(out, os.path.join(args.output, "area_preserving_surface.vtp"))
     write_vtp(param.GetOutput(1), os.path.join(args.output, "area_preserving_disk.vtp"))
