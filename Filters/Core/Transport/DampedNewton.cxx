@@ -319,7 +319,7 @@ private:
     const bool nearTolerance = this->LastStep == 1.0 && error <= 1e3 * tolerance;
     const double smallestStep = nearTolerance ? 0.25 : 0.0;
     this->Trial.resize(n);
-    double lambda = 1.0;
+    double lambda = this->Options.fullStepFirst ? 1.0 : std::min(1.0, 4.0 * this->LastStep);
     for (int trialCount = 0; trialCount < 40 && lambda >= smallestStep; ++trialCount)
     {
       for (int i = 0; i < n; ++i)
@@ -343,7 +343,8 @@ private:
           return lambda;
         }
       }
-      lambda = lambda == 1.0 ? std::min(0.5, 4.0 * this->LastStep) : 0.5 * lambda;
+      lambda = lambda == 1.0 && this->Options.fullStepFirst ? std::min(0.5, 4.0 * this->LastStep)
+                                                            : 0.5 * lambda;
     }
     return -lambda;
   }

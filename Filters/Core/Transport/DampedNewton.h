@@ -49,6 +49,9 @@ struct NewtonOptions
 {
   double tolerance = 1e-10;
   int maximumNumberOfIterations = 200;
+  // After a damped step, try the full step first (true), or 4x the last step (false): each
+  // rejected trial costs a whole evaluation.
+  bool fullStepFirst = true;
   // Called once per iteration with (iteration, relative error); return false to abort.
   std::function<bool(int, double)> progress;
 };

@@ -254,6 +254,7 @@ SphericalOTResult solveSphericalOT(
     newton.tolerance = options.tolerance;
     newton.maximumNumberOfIterations = options.maximumNumberOfIterations;
     newton.progress = options.progress;
+    newton.fullStepFirst = false;
     dampedNewton(problem, result.mass, psi, newton, result);
   }
   long double mean = 0.0L;
