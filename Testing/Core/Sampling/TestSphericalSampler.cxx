@@ -12,10 +12,10 @@
 
 #include <chrono>
 #include <cmath>
-#include <map>
-#include <numeric>
 #include <cstdio>
 #include <cstdlib>
+#include <map>
+#include <numeric>
 #include <random>
 #include <sstream>
 #include <string>
@@ -293,8 +293,8 @@ const SphereConformalStage& conformalStage(const std::string& name)
   return it->second;
 }
 
-SphericalSamplerResult sampleConformal(const SphereConformalStage& stage, long long target,
-  SamplingMode mode, double& seconds)
+SphericalSamplerResult sampleConformal(
+  const SphereConformalStage& stage, long long target, SamplingMode mode, double& seconds)
 {
   SamplerOptions options;
   options.mode = mode;
@@ -326,13 +326,14 @@ TEST(SphericalSampler, AdaptiveEvensConformalDensitiesOfRealMeshes)
       EXPECT_LE(r.massCoefficientOfVariation, 0.15) << name << " " << target;
       EXPECT_GE(r.minimumAngleDegrees, 29.5) << name << " " << target;
       std::printf("%s target %lld: %zu samples, CV %.4f, min angle %.2f, relaxed %d, %.3f s\n",
-        name.c_str(), target, r.samples.size(), r.massCoefficientOfVariation,
-        r.minimumAngleDegrees, r.relaxed, seconds);
+        name.c_str(), target, r.samples.size(), r.massCoefficientOfVariation, r.minimumAngleDegrees,
+        r.relaxed, seconds);
     }
   }
 }
 
-// Figures on the real densities at more counts (OTPARAM_SAMPLES="3000 5000 10000 100000").
+// Figures on the real densities at more counts (OTPARAM_SAMPLES="3000 5000 10000 100000";
+// OTPARAM_VERBOSE=1 adds the mass quantiles and the masses by density decade).
 TEST(SphericalSampler, DISABLED_FiguresOfRealMeshes)
 {
   std::vector<long long> targets{ 3000, 5000, 10000, 100000 };
@@ -359,6 +360,35 @@ TEST(SphericalSampler, DISABLED_FiguresOfRealMeshes)
                   "refinement %.3f s, masses %.3f s, total %.3f s\n",
         name.c_str(), target, r.samples.size(), r.refinementRuns, r.massCoefficientOfVariation,
         r.minimumAngleDegrees, r.relaxed, r.secondsRefinement, r.secondsMasses, seconds);
+      if (std::getenv("OTPARAM_VERBOSE"))
+      {
+        std::vector<double> m = r.mass;
+        std::sort(m.begin(), m.end());
+        const double mean = 4.0 * Pi / m.size();
+        std::printf("  quantiles m/mean:");
+        for (double q : { 0.0, 0.01, 0.05, 0.25, 0.5, 0.75, 0.95, 0.99, 1.0 })
+        {
+          std::printf(" %.3f", m[std::min(m.size() - 1, size_t(q * m.size()))] / mean);
+        }
+        std::printf("\n");
+        std::string error;
+        const auto field = SphericalDensityField::create(
+          stage.map.sphere, stage.surface.mesh.triangles, stage.areaDensityPerTriangle, error);
+        std::map<int, std::pair<int, double>> bins;
+        std::map<int, double> bins2;
+        for (size_t i = 0; i < r.samples.size(); ++i)
+        {
+          const int b = static_cast<int>(std::floor(2.0 * std::log10(field->value(r.samples[i]))));
+          bins[b].first++;
+          bins[b].second += r.mass[i] / mean;
+          bins2[b] += (r.mass[i] / mean - 1) * (r.mass[i] / mean - 1);
+        }
+        for (const auto& [b, v] : bins)
+        {
+          std::printf("    log10 g %.1f: %d samples, mean m %.3f, rms dev %.3f\n", b / 2.0, v.first,
+            v.second / v.first, std::sqrt(bins2[b] / v.first));
+        }
+      }
     }
   }
 }
