@@ -82,7 +82,10 @@ def circle_scalars(sphere_points, circles=150, radius=0.11):
     return np.arccos(nearest) / radius
 
 
-def render_circles(surface, path, size):
+def render_circles(surface, path, size, circles=150, radius=0.11):
+    """The surface painted with equal circles of the sphere through ConformalCoordinates
+    (left) and AreaPreservingCoordinates (right); writes the PNG unless path is None. (Per-point
+    colours: the circles must span several triangles of the mesh.)"""
     import numpy as np
     import vtkmodules.vtkRenderingOpenGL2  # noqa: F401
     from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
@@ -107,7 +110,8 @@ def render_circles(surface, path, size):
         copy = vtkPolyData()
         copy.SetPoints(surface.GetPoints())
         copy.SetPolys(surface.GetPolys())
-        scalars = numpy_to_vtk(np.nan_to_num(circle_scalars(points), nan=2.0), deep=True)
+        scalars = numpy_to_vtk(
+            np.nan_to_num(circle_scalars(points, circles, radius), nan=2.0), deep=True)
         copy.GetPointData().SetScalars(scalars)
         normals = vtkPolyDataNormals()
         normals.SetInputData(copy)
@@ -132,8 +136,10 @@ def render_circles(surface, path, size):
         camera.Zoom(1.35)
         window.AddRenderer(renderer)
     window.Render()
-    save_png(window, path)
-    print("wrote", path)
+    if path is not None:  # regression tests compare the window instead
+        save_png(window, path)
+        print("wrote", path)
+    return window
 
 
 def main():

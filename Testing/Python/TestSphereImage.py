@@ -4,6 +4,8 @@
   its SphericalTextureCoordinates: the cow (left, seen from its side) and its area-preserving
   sphere image (right, port 1) carry the same texture, so each checker cell on the cow is the
   preimage of that cell on the sphere;
+- _circles: the same cow painted with 40 equal circles of the sphere pulled back through the
+  conformal map (left: round) and the area-preserving map (right: blobs of equal area);
 - _power_diagram: vtkSphericalOTSolver's spherical power diagram (port 1, cells coloured by
   DiracId) of 300 Fibonacci Diracs with masses from 1 (south) to 10 (north pole), over the
   dual convex-hull triangulation (port 0): cells grow towards the north.
@@ -23,6 +25,7 @@ sys.path.insert(0, os.path.join(HERE, "..", "..", "Examples"))
 import numpy as np  # noqa: E402
 from area_preserving_demo import new_window, render_to_png  # noqa: E402
 from ot_solver_demo import render_png as render_power_diagram  # noqa: E402
+from sphere_demo import render_circles  # noqa: E402
 from otparam import vtkAreaPreservingParam, vtkSphericalOTSolver  # noqa: E402
 from otparam_test_utils import (check, check_image, field_value, fibonacci_sphere_points,  # noqa: E402,E501
                                 finish, image_test_arguments, make_sphere_diracs, read_mesh,
@@ -152,6 +155,7 @@ check(diagram.GetNumberOfCells() == 300, "300 Diracs: 300 cells in the power dia
 render_power_diagram(solver, None, 200)
 pictures = {
     "texture": render_texture(out, sphere, 1000),
+    "circles": render_circles(out, None, 800, circles=40, radius=0.22),
     "power_diagram": render_power_diagram(solver, None, 600),
 }
 # The diagram seen from 20 degrees above the equator, north up: the cells grow northwards.
