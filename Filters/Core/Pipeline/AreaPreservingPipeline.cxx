@@ -131,13 +131,15 @@ void compose(const AreaPreservingOptions& options, AreaPreservingResult& run)
 constexpr double CrowdedDensityRange = 1e12;
 
 // What the composite adds to its stages' warnings: the two ways the map can still be off.
-void warnAboutTheMap(AreaPreservingResult& run)
+// `where`: "in the disk" or "on the sphere".
+template <class Run>
+void warnAboutTheMap(Run& run, const char* where)
 {
   std::ostringstream msg;
   if (run.figures.flippedTriangles > 0)
   {
-    msg << run.figures.flippedTriangles
-        << " triangle(s) are flipped in the disk: the untangling did not free them.";
+    msg << run.figures.flippedTriangles << " triangle(s) are flipped " << where
+        << ": the untangling did not free them.";
     run.status.warnings.push_back(msg.str());
     msg.str("");
   }
@@ -151,7 +153,7 @@ void warnAboutTheMap(AreaPreservingResult& run)
     // the transport converges up to a range of 3e12 and stops at its start beyond 2e13.
     if (range.first != density.end() && *range.second > CrowdedDensityRange * *range.first)
     {
-      msg << " The conformal map crowds part of the surface into a tiny part of the disk: its "
+      msg << " The conformal map crowds part of the surface into a tiny part of the domain: its "
              "area density spans "
           << *range.second / *range.first
           << " (a long protrusion such as a finger, a limb or a tail), more than the samples "
@@ -160,6 +162,56 @@ void warnAboutTheMap(AreaPreservingResult& run)
     }
     run.status.warnings.push_back(msg.str());
   }
+}
+
+// The four stages chained once, for either domain: each callable runs its stage into `run`;
+// the chain checks the options, times the stages, passes their statuses on (prefixed with the
+// stage's name), stops at the first that fails or aborts, and adds warnAboutTheMap's.
+template <class Run, class Conformal, class Sample, class Transport, class Compose>
+void chainStages(const AreaPreservingOptions& options, Run& run, const char* where,
+  Conformal conformal, Sample sample, Transport transport, Compose compose)
+{
+  const auto startTotal = Clock::now();
+  run.status.error = options.check();
+  if (!run.status.error.empty())
+  {
+    return;
+  }
+  auto timed = [](double& seconds, const auto& stage)
+  {
+    const auto start = Clock::now();
+    stage();
+    seconds = secondsSince(start);
+  };
+  timed(run.secondsConformal, conformal);
+  if (!passOn(run.conformal.status, ConformalRange, run.status))
+  {
+    return;
+  }
+  timed(run.secondsSampling, sample);
+  if (!passOn(run.sampling.status, SamplingRange, run.status))
+  {
+    return;
+  }
+  OTOptions transportOptions = options.transport;
+  if (options.progress)
+  {
+    NewtonProgress fraction(transportOptions);
+    auto progress = stageProgress(options, TransportRange);
+    transportOptions.progress = [fraction, progress](int iteration, double error) mutable
+    { return progress(fraction(iteration, error)); };
+  }
+  timed(run.secondsTransport, [&] { transport(transportOptions); });
+  if (!passOn(run.transport.status, TransportRange, run.status))
+  {
+    return;
+  }
+  timed(run.secondsComposition, compose);
+  if (run.status.ok())
+  {
+    warnAboutTheMap(run, where);
+  }
+  run.secondsTotal = secondsSince(startTotal);
 }
 } // namespace
 
@@ -221,57 +273,22 @@ AreaPreservingResult parameterizeDisk(
   const TriangleSoup& surface, const AreaPreservingOptions& options)
 {
   AreaPreservingResult run;
-  const auto startTotal = Clock::now();
-  run.status.error = options.check();
-  if (!run.status.error.empty())
-  {
-    return run;
-  }
-
-  auto start = Clock::now();
-  ConformalStageOptions conformalOptions = options.conformal;
-  conformalOptions.map.progress = stageProgress(options, ConformalRange);
-  run.conformal = runConformalStage(surface, conformalOptions);
-  run.secondsConformal = secondsSince(start);
-  if (!passOn(run.conformal.status, ConformalRange, run.status))
-  {
-    return run;
-  }
-
-  start = Clock::now();
-  sample(options, run);
-  run.secondsSampling = secondsSince(start);
-  if (!passOn(run.sampling.status, SamplingRange, run.status))
-  {
-    return run;
-  }
-
-  start = Clock::now();
-  OTOptions transportOptions = options.transport;
-  if (options.progress)
-  {
-    NewtonProgress fraction(transportOptions);
-    auto progress = stageProgress(options, TransportRange);
-    transportOptions.progress = [fraction, progress](int iteration, double error) mutable
-    { return progress(fraction(iteration, error)); };
-  }
-  const std::unique_ptr<SourceMeasure> disk = makeUnitDiskSource();
-  run.transport =
-    runTransportStage(*disk, run.diracs, run.masses, transportOptions, options.maximumArcAngle);
-  run.secondsTransport = secondsSince(start);
-  if (!passOn(run.transport.status, TransportRange, run.status))
-  {
-    return run;
-  }
-
-  start = Clock::now();
-  compose(options, run);
-  run.secondsComposition = secondsSince(start);
-  if (run.status.ok())
-  {
-    warnAboutTheMap(run);
-  }
-  run.secondsTotal = secondsSince(startTotal);
+  chainStages(
+    options, run, "in the disk",
+    [&]
+    {
+      ConformalStageOptions conformalOptions = options.conformal;
+      conformalOptions.map.progress = stageProgress(options, ConformalRange);
+      run.conformal = runConformalStage(surface, conformalOptions);
+    },
+    [&] { sample(options, run); },
+    [&](const OTOptions& transportOptions)
+    {
+      const std::unique_ptr<SourceMeasure> disk = makeUnitDiskSource();
+      run.transport =
+        runTransportStage(*disk, run.diracs, run.masses, transportOptions, options.maximumArcAngle);
+    },
+    [&] { compose(options, run); });
   return run;
 }
 
@@ -360,68 +377,21 @@ SphereParameterizationResult parameterizeSphere(
   const TriangleSoup& surface, const AreaPreservingOptions& options)
 {
   SphereParameterizationResult run;
-  const auto startTotal = Clock::now();
-  run.status.error = options.check();
-  if (!run.status.error.empty())
-  {
-    return run;
-  }
-  auto start = Clock::now();
-  ConformalSphereMapOptions conformalOptions = options.sphereMap;
-  conformalOptions.progress = stageProgress(options, ConformalRange);
-  run.conformal = runSphereConformalStage(surface, conformalOptions);
-  run.secondsConformal = secondsSince(start);
-  if (!passOn(run.conformal.status, ConformalRange, run.status))
-  {
-    return run;
-  }
-
-  start = Clock::now();
-  sampleSphereDensity(options, run);
-  run.secondsSampling = secondsSince(start);
-  if (!passOn(run.sampling.status, SamplingRange, run.status))
-  {
-    return run;
-  }
-
-  start = Clock::now();
-  OTOptions transportOptions = options.transport;
-  if (options.progress)
-  {
-    NewtonProgress fraction(transportOptions);
-    auto progress = stageProgress(options, TransportRange);
-    transportOptions.progress = [fraction, progress](int iteration, double error) mutable
-    { return progress(fraction(iteration, error)); };
-  }
-  run.transport =
-    runSphereTransportStage(run.diracs, run.masses, transportOptions, options.maximumArcAngle);
-  run.secondsTransport = secondsSince(start);
-  if (!passOn(run.transport.status, TransportRange, run.status))
-  {
-    return run;
-  }
-
-  start = Clock::now();
-  composeOnTheSphere(options, run);
-  run.secondsComposition = secondsSince(start);
-  if (run.status.ok())
-  {
-    std::ostringstream msg;
-    if (run.figures.flippedTriangles > 0)
+  chainStages(
+    options, run, "on the sphere",
+    [&]
     {
-      msg << run.figures.flippedTriangles
-          << " triangle(s) are flipped on the sphere: the untangling did not free them.";
-      run.status.warnings.push_back(msg.str());
-      msg.str("");
-    }
-    if (!run.transport.result.converged)
+      ConformalSphereMapOptions conformalOptions = options.sphereMap;
+      conformalOptions.progress = stageProgress(options, ConformalRange);
+      run.conformal = runSphereConformalStage(surface, conformalOptions);
+    },
+    [&] { sampleSphereDensity(options, run); },
+    [&](const OTOptions& transportOptions)
     {
-      msg << "The transport did not converge (relative error " << run.transport.result.relativeError
-          << "); the map is approximate.";
-      run.status.warnings.push_back(msg.str());
-    }
-  }
-  run.secondsTotal = secondsSince(startTotal);
+      run.transport =
+        runSphereTransportStage(run.diracs, run.masses, transportOptions, options.maximumArcAngle);
+    },
+    [&] { composeOnTheSphere(options, run); });
   return run;
 }
 

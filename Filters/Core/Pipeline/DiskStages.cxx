@@ -185,20 +185,7 @@ ConformalStage runConformalStage(const TriangleSoup& soup, const ConformalStageO
     stage.maximumBoundaryRadiusError = std::max(stage.maximumBoundaryRadiusError,
       std::abs(std::hypot(stage.map.uv[v].x, stage.map.uv[v].y) - 1.0));
   }
-  std::ostringstream msg;
-  if (stage.surface.unreferencedPoints > 0)
-  {
-    msg << stage.surface.unreferencedPoints
-        << " input point(s) belong to no triangle and are left out of the output; the point "
-           "array vtkOriginalPointIds gives each output point's input id.";
-    status.warnings.push_back(msg.str());
-    msg.str("");
-  }
-  if (stage.figures.flippedTriangles > 0)
-  {
-    msg << stage.figures.flippedTriangles << " triangle(s) are flipped in the disk image.";
-    status.warnings.push_back(msg.str());
-  }
+  addConformalWarnings(stage.surface, stage.figures, "disk", status);
   return stage;
 }
 
@@ -371,6 +358,26 @@ double NewtonProgress::operator()(int iteration, double relativeError)
   }
   this->Fraction = std::max(this->Fraction, std::min(0.95, fraction));
   return this->Fraction;
+}
+
+//------------------------------------------------------------------------------
+void addConformalWarnings(const CompactedMesh& surface, const DistortionFigures& figures,
+  const char* domain, Status& status)
+{
+  std::ostringstream msg;
+  if (surface.unreferencedPoints > 0)
+  {
+    msg << surface.unreferencedPoints
+        << " input point(s) belong to no triangle and are left out of the output; the point "
+           "array vtkOriginalPointIds gives each output point's input id.";
+    status.warnings.push_back(msg.str());
+    msg.str("");
+  }
+  if (figures.flippedTriangles > 0)
+  {
+    msg << figures.flippedTriangles << " triangle(s) are flipped in the " << domain << " image.";
+    status.warnings.push_back(msg.str());
+  }
 }
 
 //------------------------------------------------------------------------------

@@ -113,6 +113,11 @@ private:
   double Fraction = 0.0;
 };
 
+// The conformal stages' warnings (either domain): input points left out, flipped triangles in
+// the `domain` ("disk", "sphere") image.
+void addConformalWarnings(const CompactedMesh& surface, const DistortionFigures& figures,
+  const char* domain, Status& status);
+
 // The warning of a transport solve (disk or sphere) that stopped before Tolerance: how far it
 // got, the solver's reason, and that the outputs hold the last iterate with Converged = 0.
 std::string transportNotConvergedWarning(const NewtonReport& result, const OTOptions& options);

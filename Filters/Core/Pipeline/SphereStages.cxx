@@ -47,20 +47,7 @@ SphereConformalStage runSphereConformalStage(
     return stage;
   }
   status.warnings = stage.map.status.warnings;
-  std::ostringstream msg;
-  if (stage.surface.unreferencedPoints > 0)
-  {
-    msg << stage.surface.unreferencedPoints
-        << " input point(s) belong to no triangle and are left out of the output; the point "
-           "array vtkOriginalPointIds gives each output point's input id.";
-    status.warnings.push_back(msg.str());
-    msg.str("");
-  }
-  if (stage.figures.flippedTriangles > 0)
-  {
-    msg << stage.figures.flippedTriangles << " triangle(s) are flipped in the sphere image.";
-    status.warnings.push_back(msg.str());
-  }
+  addConformalWarnings(stage.surface, stage.figures, "sphere", status);
   return stage;
 }
 
