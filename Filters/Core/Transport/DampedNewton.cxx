@@ -319,7 +319,7 @@ private:
     const bool nearTolerance = this->LastStep == 1.0 && error <= 1e3 * tolerance;
     const double smallestStep = nearTolerance ? 0.25 : 0.0;
     this->Trial.resize(n);
-    double lambda = this->Options.fullStepFirst ? 1.0 : std::min(1.0, 4.0 * this->LastStep);
+    double lambda = this->Options.fullStepFirst ? 1.0 : std::min(1.0, 2.0 * this->LastStep);
     for (int trialCount = 0; trialCount < 40 && lambda >= smallestStep; ++trialCount)
     {
       for (int i = 0; i < n; ++i)

@@ -49,8 +49,11 @@ struct NewtonOptions
 {
   double tolerance = 1e-10;
   int maximumNumberOfIterations = 200;
-  // After a damped step, try the full step first (true), or 4x the last step (false): each
-  // rejected trial costs a whole evaluation.
+  // After a damped step, try the full step first (true), or twice the last step (false): each
+  // rejected trial costs a whole evaluation (the sphere, 1e5 Diracs of contrast 1e4, seed 1:
+  // the same 19 iterations in 25.5 s with the full step first (43 evaluations) under load;
+  // seeds 1 / 2 paired on a quiet machine: 14.1 / 15.7 s with 4x the last step, 11.3 / 12.4 s
+  // with twice it).
   bool fullStepFirst = true;
   // Called once per iteration with (iteration, relative error); return false to abort.
   std::function<bool(int, double)> progress;
