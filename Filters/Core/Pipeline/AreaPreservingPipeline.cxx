@@ -56,10 +56,13 @@ bool passOn(const Status& stage, StageRange range, Status& run)
   return run.ok();
 }
 
-void sample(const AreaPreservingOptions& options, AreaPreservingResult& run)
+// The sampling stage of either domain on the conformal image's exact per-triangle area ratio
+// (masses are then exact surface areas); `runStage(options)` runs the domain's sampler. The
+// Diracs are the samples of positive mass.
+template <class Run, class RunStage>
+void sample(const AreaPreservingOptions& options, Run& run, const RunStage& runStage)
 {
-  const ConformalStage& conformal = run.conformal;
-  const std::string densityError = checkDensityValues(conformal.areaDensityPerTriangle, "cell");
+  const std::string densityError = checkDensityValues(run.conformal.areaDensityPerTriangle, "cell");
   if (!densityError.empty())
   {
     run.sampling.status.error = "The density cell array 'AreaDensity' " + densityError + ".";
@@ -67,14 +70,12 @@ void sample(const AreaPreservingOptions& options, AreaPreservingResult& run)
   }
   SamplerOptions samplerOptions = options.sampling;
   samplerOptions.progress = stageProgress(options, SamplingRange);
-  // The exact per-triangle area ratio: masses are then exact surface areas.
-  run.sampling = runSamplingStage(conformal.map.uv, conformal.surface.mesh.triangles, {},
-    conformal.areaDensityPerTriangle, samplerOptions);
+  run.sampling = runStage(samplerOptions);
   if (!run.sampling.status.ok())
   {
     return;
   }
-  const SamplerResult& samples = run.sampling.result;
+  const auto& samples = run.sampling.result;
   // Samples whose Voronoi cell integrates to 0 carry no mass: the transport is the same
   // without them, and the solver rejects zero masses. (A conformal factor is positive, so this
   // is a safety net: it caught cells ~1e-7 wide at a coarse hand's finger tips, density 1e10,
@@ -281,7 +282,15 @@ AreaPreservingResult parameterizeDisk(
       conformalOptions.map.progress = stageProgress(options, ConformalRange);
       run.conformal = runConformalStage(surface, conformalOptions);
     },
-    [&] { sample(options, run); },
+    [&]
+    {
+      sample(options, run,
+        [&](const SamplerOptions& samplerOptions)
+        {
+          return runSamplingStage(run.conformal.map.uv, run.conformal.surface.mesh.triangles, {},
+            run.conformal.areaDensityPerTriangle, samplerOptions);
+        });
+    },
     [&](const OTOptions& transportOptions)
     {
       const std::unique_ptr<SourceMeasure> disk = makeUnitDiskSource();
@@ -307,35 +316,6 @@ Domain chooseDomain(const TriangleSoup& surface)
 
 namespace
 {
-void sampleSphereDensity(const AreaPreservingOptions& options, SphereParameterizationResult& run)
-{
-  const SphereConformalStage& conformal = run.conformal;
-  const std::string densityError = checkDensityValues(conformal.areaDensityPerTriangle, "cell");
-  if (!densityError.empty())
-  {
-    run.sampling.status.error = "The density cell array 'AreaDensity' " + densityError + ".";
-    return;
-  }
-  SamplerOptions samplerOptions = options.sampling;
-  samplerOptions.progress = stageProgress(options, SamplingRange);
-  run.sampling = runSphereSamplingStage(conformal.map.sphere, conformal.surface.mesh.triangles,
-    conformal.areaDensityPerTriangle, samplerOptions);
-  if (!run.sampling.status.ok())
-  {
-    return;
-  }
-  const SphericalSamplerResult& samples = run.sampling.result;
-  for (std::size_t i = 0; i < samples.samples.size(); ++i)
-  {
-    if (samples.mass[i] > 0.0)
-    {
-      run.diracs.push_back(samples.samples[i]);
-      run.masses.push_back(samples.mass[i]);
-    }
-  }
-  run.droppedSamples = static_cast<int>(samples.samples.size() - run.diracs.size());
-}
-
 void composeOnTheSphere(const AreaPreservingOptions& options, SphereParameterizationResult& run)
 {
   const SphereConformalStage& conformal = run.conformal;
@@ -385,7 +365,16 @@ SphereParameterizationResult parameterizeSphere(
       conformalOptions.progress = stageProgress(options, ConformalRange);
       run.conformal = runSphereConformalStage(surface, conformalOptions);
     },
-    [&] { sampleSphereDensity(options, run); },
+    [&]
+    {
+      sample(options, run,
+        [&](const SamplerOptions& samplerOptions)
+        {
+          return runSphereSamplingStage(run.conformal.map.sphere,
+            run.conformal.surface.mesh.triangles, run.conformal.areaDensityPerTriangle,
+            samplerOptions);
+        });
+    },
     [&](const OTOptions& transportOptions)
     {
       run.transport =
