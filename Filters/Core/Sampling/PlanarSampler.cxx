@@ -1074,54 +1074,45 @@ void sampleSupport(
     const double g = field.value(x);
     return options.sizeRule == SizeRule::SqrtDensity ? std::sqrt(g) : g;
   };
-  double runTarget = target >= 4000.0 ? target / 4.0 : target;
-  double epsilon = std::sqrt(integral / runTarget);
   std::unique_ptr<CDT> cdt;
   std::vector<std::vector<Vec2>> refinedLoops, loops; // all boundary samples; the kept ones
   RefinementProgress progress(options);
-  for (int run = 0; run < 5; ++run)
+  // Tighter than the convex path's 8%: the angle repair after the relaxation adds up to 5%
+  // more samples along polygonal boundaries (band of zero density, 500 samples: 539 -> 565),
+  // and a run here costs little.
+  const bool finished = refineToTargetCount(
+    options, integral, 0.04,
+    [&](double epsilon, double runTarget)
+    {
+      cdt = std::make_unique<CDT>();
+      std::vector<std::vector<Vec2>> boundary;
+      for (const auto& loop : field.boundaryLoops())
+      {
+        boundary.push_back(sampleLoop(loop, grading, epsilon));
+      }
+      insertLoops(*cdt, boundary);
+      if (!refineSupport(
+            *cdt, field, options, epsilon, result.capped, progress.ofRun(runTarget, target)))
+      {
+        return -1.0;
+      }
+      refinedLoops = boundaryLoopsOf(*cdt);
+      loops = thinBoundary(refinedLoops, field);
+      size_t dropped = 0;
+      for (const auto& loop : refinedLoops)
+      {
+        dropped += loop.size();
+      }
+      for (const auto& loop : loops)
+      {
+        dropped -= loop.size();
+      }
+      return static_cast<double>(verticesInDomain(*cdt) - dropped);
+    },
+    result);
+  if (!finished)
   {
-    cdt = std::make_unique<CDT>();
-    std::vector<std::vector<Vec2>> boundary;
-    for (const auto& loop : field.boundaryLoops())
-    {
-      boundary.push_back(sampleLoop(loop, grading, epsilon));
-    }
-    insertLoops(*cdt, boundary);
-    ++result.refinementRuns;
-    const bool finished = refineSupport(
-      *cdt, field, options, epsilon, result.capped, progress.ofRun(runTarget, target));
-    if (!finished)
-    {
-      result.status.aborted = true;
-      return;
-    }
-    refinedLoops = boundaryLoopsOf(*cdt);
-    loops = thinBoundary(refinedLoops, field);
-    size_t dropped = 0;
-    for (const auto& loop : refinedLoops)
-    {
-      dropped += loop.size();
-    }
-    for (const auto& loop : loops)
-    {
-      dropped -= loop.size();
-    }
-    const double count = static_cast<double>(verticesInDomain(*cdt) - dropped);
-    result.epsilon = epsilon;
-    if (result.capped)
-    {
-      break;
-    }
-    epsilon *= std::sqrt(count / target);
-    // Tighter than the convex path's 8%: the angle repair after the relaxation adds up to 5%
-    // more samples along polygonal boundaries (band of zero density, 500 samples: 539 -> 565),
-    // and a run here costs little.
-    if (runTarget == target && std::abs(count / target - 1.0) <= 0.04)
-    {
-      break;
-    }
-    runTarget = target;
+    return;
   }
   // The refinement splits boundary edges at their midpoints, which for a curved boundary given
   // as a polygon lie on chords: put them back on the boundary (a move of the chord's sagitta).
@@ -1219,35 +1210,26 @@ void sampleConvex(
   const DensityField& field, const SamplerOptions& options, double integral, SamplerResult& result)
 {
   const double target = static_cast<double>(options.numberOfSamples);
-  double runTarget = target >= 4000.0 ? target / 4.0 : target;
-  double epsilon = std::sqrt(integral / runTarget);
   RefinementProgress progress(options);
   std::unique_ptr<Refinement> refinement;
   std::unordered_set<const void*> drop; // boundary samples dropped from the last run
-  for (int run = 0; run < 5; ++run)
+  const bool finished = refineToTargetCount(
+    options, integral, 0.08,
+    [&](double epsilon, double runTarget)
+    {
+      refinement = std::make_unique<Refinement>(field, options, epsilon);
+      if (!refinement->run(progress.ofRun(runTarget, target)))
+      {
+        return -1.0;
+      }
+      drop = boundaryToDrop(refinement->triangulation(), field);
+      result.capped = refinement->capped();
+      return static_cast<double>(refinement->triangulation().number_of_vertices() - drop.size());
+    },
+    result);
+  if (!finished)
   {
-    refinement = std::make_unique<Refinement>(field, options, epsilon);
-    ++result.refinementRuns;
-    const bool finished = refinement->run(progress.ofRun(runTarget, target));
-    if (!finished)
-    {
-      result.status.aborted = true;
-      return;
-    }
-    drop = boundaryToDrop(refinement->triangulation(), field);
-    const double count =
-      static_cast<double>(refinement->triangulation().number_of_vertices() - drop.size());
-    result.epsilon = epsilon;
-    if (refinement->capped())
-    {
-      break;
-    }
-    epsilon *= std::sqrt(count / target);
-    if (runTarget == target && std::abs(count / target - 1.0) <= 0.08)
-    {
-      break;
-    }
-    runTarget = target;
+    return;
   }
   result.capped = refinement->capped();
   const DT& dt = refinement->triangulation();
