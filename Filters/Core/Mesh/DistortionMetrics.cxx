@@ -122,6 +122,47 @@ DistortionFigures measureDistortion(const SurfaceMesh& surface, const std::vecto
   return f;
 }
 
+namespace
+{
+// Surface area (times `scale`) over image area per triangle and per point (the areas of the
+// triangles around it); flipped or collapsed images get the largest finite ratio. The disk's
+// and the sphere's AreaDensity.
+void areaRatios(const SurfaceMesh& surface, const std::vector<double>& surfaceArea,
+  const std::vector<double>& imageArea, double scale, std::vector<double>& perTriangle,
+  std::vector<double>& perPoint)
+{
+  const size_t nt = surface.triangles.size();
+  perTriangle.assign(nt, 0.0);
+  perPoint.assign(surface.points.size(), 0.0);
+  std::vector<double> pointImageArea(surface.points.size(), 0.0);
+  double largest = 0.0;
+  for (size_t t = 0; t < nt; ++t)
+  {
+    if (imageArea[t] > 0.0)
+    {
+      perTriangle[t] = scale * surfaceArea[t] / imageArea[t];
+      largest = std::isfinite(perTriangle[t]) ? std::max(largest, perTriangle[t]) : largest;
+    }
+  }
+  for (size_t t = 0; t < nt; ++t)
+  {
+    if (!(imageArea[t] > 0.0) || !std::isfinite(perTriangle[t]))
+    {
+      perTriangle[t] = largest;
+    }
+    for (int v : surface.triangles[t])
+    {
+      perPoint[v] += scale * surfaceArea[t];
+      pointImageArea[v] += std::max(imageArea[t], 0.0);
+    }
+  }
+  for (size_t v = 0; v < perPoint.size(); ++v)
+  {
+    perPoint[v] = pointImageArea[v] > 0.0 ? perPoint[v] / pointImageArea[v] : largest;
+  }
+}
+} // namespace
+
 void computeAreaDensity(const SurfaceMesh& surface, const std::vector<Vec2>& uv,
   std::vector<double>& perTriangle, std::vector<double>& perPoint)
 {
@@ -135,35 +176,7 @@ void computeAreaDensity(const SurfaceMesh& surface, const std::vector<Vec2>& uv,
     diskArea[t] = signedArea(uv[tri[0]], uv[tri[1]], uv[tri[2]]);
     surfaceTotal += surfaceArea[t];
   }
-  const double scale = Pi / surfaceTotal;
-  perTriangle.assign(nt, 0.0);
-  perPoint.assign(surface.points.size(), 0.0);
-  std::vector<double> pointDiskArea(surface.points.size(), 0.0);
-  double largest = 0.0;
-  for (size_t t = 0; t < nt; ++t)
-  {
-    if (diskArea[t] > 0.0)
-    {
-      perTriangle[t] = scale * surfaceArea[t] / diskArea[t];
-      largest = std::max(largest, perTriangle[t]);
-    }
-  }
-  for (size_t t = 0; t < nt; ++t)
-  {
-    if (!(diskArea[t] > 0.0) || !std::isfinite(perTriangle[t]))
-    {
-      perTriangle[t] = largest;
-    }
-    for (int v : surface.triangles[t])
-    {
-      perPoint[v] += scale * surfaceArea[t];
-      pointDiskArea[v] += std::max(diskArea[t], 0.0);
-    }
-  }
-  for (size_t v = 0; v < perPoint.size(); ++v)
-  {
-    perPoint[v] = pointDiskArea[v] > 0.0 ? perPoint[v] / pointDiskArea[v] : largest;
-  }
+  areaRatios(surface, surfaceArea, diskArea, Pi / surfaceTotal, perTriangle, perPoint);
 }
 
 namespace
@@ -265,35 +278,7 @@ void computeSphereAreaDensity(const SurfaceMesh& surface, const std::vector<Vec3
     sphericalArea[t] = sphericalTriangleArea(unit[tri[0]], unit[tri[1]], unit[tri[2]]);
     surfaceTotal += surfaceArea[t];
   }
-  const double scale = 4.0 * Pi / surfaceTotal;
-  perTriangle.assign(nt, 0.0);
-  perPoint.assign(surface.points.size(), 0.0);
-  std::vector<double> pointSphericalArea(surface.points.size(), 0.0);
-  double largest = 0.0;
-  for (size_t t = 0; t < nt; ++t)
-  {
-    if (sphericalArea[t] > 0.0)
-    {
-      perTriangle[t] = scale * surfaceArea[t] / sphericalArea[t];
-      largest = std::isfinite(perTriangle[t]) ? std::max(largest, perTriangle[t]) : largest;
-    }
-  }
-  for (size_t t = 0; t < nt; ++t)
-  {
-    if (!(sphericalArea[t] > 0.0) || !std::isfinite(perTriangle[t]))
-    {
-      perTriangle[t] = largest;
-    }
-    for (int v : surface.triangles[t])
-    {
-      perPoint[v] += scale * surfaceArea[t];
-      pointSphericalArea[v] += std::max(sphericalArea[t], 0.0);
-    }
-  }
-  for (size_t v = 0; v < perPoint.size(); ++v)
-  {
-    perPoint[v] = pointSphericalArea[v] > 0.0 ? perPoint[v] / pointSphericalArea[v] : largest;
-  }
+  areaRatios(surface, surfaceArea, sphericalArea, 4.0 * Pi / surfaceTotal, perTriangle, perPoint);
 }
 
 } // namespace otparam
