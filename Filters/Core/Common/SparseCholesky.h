@@ -5,9 +5,6 @@
 
 #include <Eigen/Sparse>
 #include <Eigen/SparseCholesky>
-#ifdef OTPARAM_HAVE_CHOLMOD
-#include <Eigen/CholmodSupport>
-#endif
 
 #include <memory>
 
@@ -23,60 +20,23 @@ public:
   using SparseMatrix = Eigen::SparseMatrix<double>;
   static constexpr int CholmodThreshold = 200000;
 
+  SparseCholesky();
+  ~SparseCholesky();
+  SparseCholesky(const SparseCholesky&) = delete;
+  SparseCholesky& operator=(const SparseCholesky&) = delete;
+
   // Returns false when the matrix is not numerically positive definite.
-  bool compute(const SparseMatrix& lower)
-  {
-    Size = static_cast<int>(lower.rows());
-#ifdef OTPARAM_HAVE_CHOLMOD
-    if (Size >= CholmodThreshold)
-    {
-      Cholmod = std::make_unique<Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower>>();
-      // AMD only: by default CHOLMOD also tries METIS when AMD's fill looks high, which on
-      // planar graphs costs more time than it saves.
-      Cholmod->cholmod().nmethods = 1;
-      Cholmod->cholmod().method[0].ordering = CHOLMOD_AMD;
-      Cholmod->compute(lower);
-      return Cholmod->info() == Eigen::Success;
-    }
-    Cholmod.reset();
-#endif
-    Ldlt.compute(lower);
-    return Ldlt.info() == Eigen::Success;
-  }
-
-  template <typename Rhs>
-  Eigen::MatrixXd solve(const Rhs& b) const
-  {
-#ifdef OTPARAM_HAVE_CHOLMOD
-    if (Cholmod)
-    {
-      return Cholmod->solve(b);
-    }
-#endif
-    return Ldlt.solve(b);
-  }
-
-  int size() const
-  {
-    return Size;
-  }
-
+  bool compute(const SparseMatrix& lower);
+  Eigen::MatrixXd solve(const Eigen::MatrixXd& b) const;
+  int size() const { return Size; }
   // Eigen's solve keeps no state between calls; CHOLMOD's shares a workspace.
-  bool concurrentSolvesAreSafe() const
-  {
-#ifdef OTPARAM_HAVE_CHOLMOD
-    return !Cholmod;
-#else
-    return true;
-#endif
-  }
+  bool concurrentSolvesAreSafe() const { return !Supernodal; }
 
 private:
+  struct Cholmod; // CHOLMOD stays inside SparseCholesky.cxx (see there)
   int Size = -1;
   Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower> Ldlt;
-#ifdef OTPARAM_HAVE_CHOLMOD
-  std::unique_ptr<Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower>> Cholmod;
-#endif
+  std::unique_ptr<Cholmod> Supernodal;
 };
 
 } // namespace otparam

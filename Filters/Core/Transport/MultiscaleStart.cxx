@@ -342,16 +342,9 @@ namespace
 std::vector<int> coarseSubset(const std::vector<Vec2>& diracs)
 {
   const int n = static_cast<int>(diracs.size());
-  // A random sixth (fixed seed: runs are reproducible) carries the masses of the Diracs
-  // nearest to it: a sixth halves the coarse solve against a quarter and leaves the fine
-  // iterations as they were; an eighth was no faster (docs/design.md).
   // The Diracs' convex hull is in the coarse set, so that the coarse cells reach as far out on
   // the circle as the fine ones must.
-  std::vector<int> ids(n);
-  std::iota(ids.begin(), ids.end(), 0);
-  std::mt19937 rng(12345u);
-  std::shuffle(ids.begin(), ids.end(), rng);
-  ids.resize(n / 6);
+  std::vector<int> ids = randomSixth(n);
   {
     std::vector<K::Point_2> points;
     points.reserve(n);
@@ -372,13 +365,10 @@ std::vector<int> coarseSubset(const std::vector<Vec2>& diracs)
   return ids;
 }
 
-// The median Delaunay edge of the coarse Diracs (the stencil's scale), or 0 when their spacing
-// varies too much for one stencil.
+// The stencil's scale (stencilSpacing) from the coarse Delaunay edges.
 double coarseSpacing(const Delaunay& dt, const std::vector<Vec2>& coarseDiracs)
 {
   const int coarseCount = static_cast<int>(coarseDiracs.size());
-  // One radius for all: a radius that varies from place to place breaks the convexity (with each
-  // coarse Dirac's mean Delaunay edge, interpolated, 61% of the fine Diracs were hidden).
   std::vector<double> edgeLengths;
   edgeLengths.reserve(3 * static_cast<size_t>(coarseCount));
   for (auto e = dt.finite_edges_begin(); e != dt.finite_edges_end(); ++e)
@@ -387,16 +377,7 @@ double coarseSpacing(const Delaunay& dt, const std::vector<Vec2>& coarseDiracs)
     const int b = e->first->vertex(Delaunay::ccw(e->second))->info();
     edgeLengths.push_back(norm(coarseDiracs[a] - coarseDiracs[b]));
   }
-  // Nor can one radius serve Diracs whose spacing varies much: the stencil would be smaller than
-  // the spacing in some places, where fine Diracs then share flat pieces of the smoothed psi
-  // (cells of mass ~1e-20, no Newton step possible). Such Diracs start single-level. Measured
-  // spread (90th / 10th percentile of the coarse Delaunay edges): random Diracs 4.5; adaptive
-  // samples of the brain 11 and of the hand 1657 (stalled coarse-to-fine).
-  std::sort(edgeLengths.begin(), edgeLengths.end());
-  const double medianEdge = edgeLengths[edgeLengths.size() / 2];
-  const double spread =
-    edgeLengths[9 * edgeLengths.size() / 10] / edgeLengths[edgeLengths.size() / 10];
-  return spread <= MaximumSpacingSpread ? medianEdge : 0.0;
+  return stencilSpacing(edgeLengths);
 }
 
 // Each fine Dirac's mass goes to its nearest coarse Dirac (walked in row order).
@@ -430,24 +411,22 @@ void smoothedHeights(const DiskDualPotential& psi, const std::vector<Vec2>& dira
   // triangles hid 36% of the fine Diracs, and the repaired start needed 19 Newton iterations;
   // this one hides none, its largest relative mass error is 14 instead of 400, and the fine
   // level needs 8 iterations.
-  // The stencil: its centre and two hexagons, of radii r / 2 and r, weights 1, 0.8, 0.4, with r
-  // 1.3 median coarse Delaunay edges (fine iterations were flat from 1 to 2 coarse spacings).
-  // The small share of |y|^2 / 2 (the Voronoi diagram) is curvature everywhere.
+  // The stencil (MultiscaleStart.h): its centre and two hexagons. The small share of |y|^2 / 2
+  // (the Voronoi diagram) is curvature everywhere.
   std::vector<std::pair<Vec2, double>> stencil{ { Vec2{ 0.0, 0.0 }, 1.0 } };
   for (int k = 0; k < 6; ++k)
   {
     const double angle = k * Pi / 3.0;
     stencil.push_back(
-      { 0.5 * Vec2{ std::cos(angle + Pi / 6.0), std::sin(angle + Pi / 6.0) }, 0.8 });
-    stencil.push_back({ Vec2{ std::cos(angle), std::sin(angle) }, 0.4 });
+      { 0.5 * Vec2{ std::cos(angle + Pi / 6.0), std::sin(angle + Pi / 6.0) }, StencilInnerWeight });
+    stencil.push_back({ Vec2{ std::cos(angle), std::sin(angle) }, StencilOuterWeight });
   }
   double totalWeight = 0.0;
   for (const auto& point : stencil)
   {
     totalWeight += point.second;
   }
-  const double radius = 1.3 * medianEdge;
-  constexpr double VoronoiShare = 1e-4;
+  const double radius = StencilRadiusInSpacings * medianEdge;
   h.assign(n, 0.0L);
 #pragma omp parallel
   {
@@ -462,12 +441,45 @@ void smoothedHeights(const DiskDualPotential& psi, const std::vector<Vec2>& dira
       {
         average += weight * psi(y + radius * offset, hint);
       }
-      h[i] = (1.0L - VoronoiShare) * average / totalWeight +
-        VoronoiShare * 0.5L * static_cast<long double>(dot(y, y));
+      h[i] = (1.0L - StencilVoronoiShare) * average / totalWeight +
+        StencilVoronoiShare * 0.5L * static_cast<long double>(dot(y, y));
     }
   }
 }
 } // namespace
+
+std::vector<int> randomSixth(int n)
+{
+  // A sixth halves the coarse solve against a quarter and leaves the fine iterations as they
+  // were; an eighth was no faster (docs/design.md).
+  std::vector<int> ids(n);
+  std::iota(ids.begin(), ids.end(), 0);
+  std::mt19937 rng(12345u);
+  std::shuffle(ids.begin(), ids.end(), rng);
+  ids.resize(n / 6);
+  std::sort(ids.begin(), ids.end());
+  return ids;
+}
+
+double stencilSpacing(std::vector<double> edgeLengths)
+{
+  // One radius for all: a radius that varies from place to place breaks the convexity (with each
+  // coarse Dirac's mean Delaunay edge, interpolated, 61% of the fine Diracs were hidden).
+  // Nor can one radius serve Diracs whose spacing varies much: the stencil would be smaller than
+  // the spacing in some places, where fine Diracs then share flat pieces of the smoothed
+  // potential (cells of mass ~1e-20, no Newton step possible). Such Diracs start single-level.
+  // Measured spread (90th / 10th percentile of the coarse Delaunay edges): random Diracs 4.5;
+  // adaptive samples of the brain 11 and of the hand 1657 (stalled coarse-to-fine).
+  if (edgeLengths.empty())
+  {
+    return 0.0;
+  }
+  std::sort(edgeLengths.begin(), edgeLengths.end());
+  const double medianEdge = edgeLengths[edgeLengths.size() / 2];
+  const double spread =
+    edgeLengths[9 * edgeLengths.size() / 10] / edgeLengths[edgeLengths.size() / 10];
+  return spread <= MaximumSpacingSpread ? medianEdge : 0.0;
+}
 
 bool coarseToFineHeights(const SourceMeasure& source, const std::vector<Vec2>& diracs,
   const std::vector<double>& nu, std::vector<Height>& h)

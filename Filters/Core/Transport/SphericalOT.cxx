@@ -2,6 +2,7 @@
 
 #include "Common/SphericalGeometry.h"
 #include "Transport/DampedNewton.h"
+#include "Transport/MultiscaleStart.h"
 #include "Transport/SphericalPowerDiagram.h"
 
 #include <algorithm>
@@ -45,12 +46,14 @@ double coupling(const Vec3& yi, const Vec3& yj, const Height& psiI, const Height
 
 // Cell areas, moments and Hessian couplings at log-heights psi. When the diagram hides a Dirac
 // or does not cover the sphere, every mass is 0 (a Newton trial is then rejected).
+// previous, when given, is the diagram of the same Diracs at other heights, flipped into this one.
 void evaluate(const std::vector<Vec3>& diracs, const std::vector<Height>& psi,
-  SphericalPowerDiagram& diagram, Evaluation& ev, NewtonReport& timing)
+  SphericalPowerDiagram& diagram, Evaluation& ev, NewtonReport& timing,
+  const SphericalPowerDiagram* previous = nullptr)
 {
   const int n = static_cast<int>(diracs.size());
   auto t0 = Clock::now();
-  ev.covers = diagram.build(diracs, psi);
+  ev.covers = previous ? diagram.buildFrom(*previous, diracs, psi) : diagram.build(diracs, psi);
   timing.secondsTriangulation += secondsSince(t0);
   ev.cellMass.assign(n, 0.0);
   ev.moment.assign(n, Vec3{});
@@ -117,7 +120,7 @@ public:
   const NewtonEvaluation& evaluateTrial(
     const std::vector<Height>& trial, NewtonReport& timing) override
   {
-    evaluate(this->Diracs, trial, this->TrialDiagram, this->TrialEv, timing);
+    evaluate(this->Diracs, trial, this->TrialDiagram, this->TrialEv, timing, &this->Diagram);
     return this->TrialEv;
   }
   void acceptTrial() override
@@ -144,6 +147,38 @@ std::string listIds(const char* what, const std::vector<size_t>& ids)
   }
   msg << (ids.size() > 10 ? " ...)" : ")");
   return msg.str();
+}
+
+// Log-heights from the coarse-to-fine start (MultiscaleStart.h), evaluated; false (and nothing
+// changed but the timings) when there is none or it hides a Dirac.
+bool startFromCoarseLevel(const std::vector<Vec3>& diracs, const std::vector<double>& nu,
+  std::vector<Height>& psi, SphericalPowerDiagram& diagram, Evaluation& ev, NewtonReport& timing)
+{
+  std::vector<Height> start;
+  if (!sphericalCoarseToFineLogHeights(diracs, nu, start))
+  {
+    return false;
+  }
+  evaluate(diracs, start, diagram, ev, timing);
+  if (ev.minMass <= 0.0)
+  {
+    return false;
+  }
+  psi.swap(start);
+  return true;
+}
+
+void solveByNewton(const std::vector<Vec3>& diracs, const std::vector<double>& nu,
+  std::vector<Height>& psi, SphericalPowerDiagram& diagram, Evaluation& ev,
+  const OTOptions& options, NewtonReport& report)
+{
+  SphericalNewtonProblem problem(diracs, diagram, ev);
+  NewtonOptions newton;
+  newton.tolerance = options.tolerance;
+  newton.maximumNumberOfIterations = options.maximumNumberOfIterations;
+  newton.progress = options.progress;
+  newton.fullStepFirst = false;
+  dampedNewton(problem, nu, psi, newton, report);
 }
 
 std::vector<Height> toHeights(const std::vector<double>& psi)
@@ -237,10 +272,16 @@ SphericalOTResult solveSphericalOT(
   SphericalOTResult result;
   const int n = static_cast<int>(diracs.size());
   result.mass = massesScaledTo(masses, 4.0 * M_PI);
-  std::vector<Height> psi(n, Height(0.0L));
+  std::vector<Height> psi;
   SphericalPowerDiagram diagram;
   Evaluation ev;
-  evaluate(diracs, psi, diagram, ev, result);
+  const bool multiscale = options.coarseToFineStart &&
+    startFromCoarseLevel(diracs, result.mass, psi, diagram, ev, result);
+  if (!multiscale)
+  {
+    psi.assign(n, Height(0.0L));
+    evaluate(diracs, psi, diagram, ev, result);
+  }
   if (ev.minMass <= 0.0)
   {
     result.message = ev.covers
@@ -249,13 +290,21 @@ SphericalOTResult solveSphericalOT(
   }
   else
   {
-    SphericalNewtonProblem problem(diracs, diagram, ev);
-    NewtonOptions newton;
-    newton.tolerance = options.tolerance;
-    newton.maximumNumberOfIterations = options.maximumNumberOfIterations;
-    newton.progress = options.progress;
-    newton.fullStepFirst = false;
-    dampedNewton(problem, result.mass, psi, newton, result);
+    solveByNewton(diracs, result.mass, psi, diagram, ev, options, result);
+    // As on the plane (SemiDiscreteOT.cxx): a start that stalls far from the solution is
+    // dropped for the Voronoi start.
+    if (multiscale && !result.converged && !result.aborted &&
+      result.iterations < options.maximumNumberOfIterations && result.relativeError > 1e-3)
+    {
+      const std::string stalled = result.message;
+      result.gradientNormHistory.clear();
+      result.stepLengthHistory.clear();
+      psi.assign(n, Height(0.0L));
+      evaluate(diracs, psi, diagram, ev, result);
+      solveByNewton(diracs, result.mass, psi, diagram, ev, options, result);
+      result.message = "the coarse-to-fine start stalled (" + stalled +
+        "); restarted from the Voronoi start: " + result.message;
+    }
   }
   long double mean = 0.0L;
   for (const Height& h : psi)

@@ -29,8 +29,8 @@ struct SphericalOTResult : NewtonReport
 std::string validateSphericalDiracs(std::vector<Vec3>& diracs, const std::vector<double>& masses);
 
 // Solves for log-heights psi such that every cell W_i has area masses[i] (rescaled to 4 pi).
-// Options as on the plane (coarseToFineStart is not used: the start is the spherical Voronoi
-// diagram). The Diracs must have passed validateSphericalDiracs.
+// Options as on the plane: the start is the spherical Voronoi diagram, or, for many Diracs, a
+// coarse-to-fine start (MultiscaleStart.h). The Diracs must have passed validateSphericalDiracs.
 SphericalOTResult solveSphericalOT(const std::vector<Vec3>& diracs,
   const std::vector<double>& masses, const OTOptions& options = OTOptions());
 

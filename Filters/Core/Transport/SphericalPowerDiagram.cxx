@@ -7,6 +7,8 @@
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
 #include <CGAL/spatial_sort.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace otparam
@@ -44,6 +46,128 @@ LongVec3 longScaledDifference(
   const long double e = std::expm1(heightDifference(psiB, psiA));
   auto component = [e](double a, double b) { return static_cast<long double>(a - b) + e * a; };
   return { component(ya.x, yb.x), component(ya.y, yb.y), component(ya.z, yb.z) };
+}
+// The corner of triangle t that is neither a nor b.
+int oppositeCorner(const Triangle& t, int a, int b)
+{
+  return t[0] != a && t[0] != b ? 0 : (t[1] != a && t[1] != b ? 1 : 2);
+}
+
+// Lawson's flips carried to the hull: starting from the hull of the same Diracs at earlier
+// heights (a triangulated sphere around the origin), flips every reflex edge whose flip keeps
+// the triangles around the origin, until every edge is convex. A closed surface that is convex at
+// every edge and wraps the origin once is the hull boundary (as a locally regular triangulation is
+// regular), so the result is the hull. Each flip moves the surface outward, so the flips end;
+// they get stuck only where a Dirac has sunk inside the hull (hidden) or behind a fold of the
+// old surface, and then return false. Written by hand: CGAL's triangulations move a point only by
+// removing and inserting it. A Newton step changes few edges: at 1e5 Diracs this takes ~10 ms
+// where a new hull takes ~250 ms.
+bool flipToHull(const std::vector<Kernel::Point_3>& p, std::vector<Triangle>& triangles,
+  std::vector<std::array<int, 3>>& across)
+{
+  const Kernel::Point_3 origin(0.0, 0.0, 0.0);
+  const auto orientation = Kernel().orientation_3_object();
+  // Most edges of the old hull stay convex: they are checked in parallel, and only the reflex
+  // ones start the (sequential) flips.
+  const int facets = static_cast<int>(triangles.size());
+  std::vector<std::pair<int, int>> stack;
+#pragma omp parallel
+  {
+    std::vector<std::pair<int, int>> reflex;
+#pragma omp for schedule(static) nowait
+    for (int f = 0; f < facets; ++f)
+    {
+      for (int j = 0; j < 3; ++j)
+      {
+        const int g = across[f][j];
+        if (f < g)
+        {
+          const int a = triangles[f][(j + 1) % 3], b = triangles[f][(j + 2) % 3];
+          const int d = triangles[g][oppositeCorner(triangles[g], a, b)];
+          if (orientation(p[a], p[b], p[triangles[f][j]], p[d]) == CGAL::POSITIVE)
+          {
+            reflex.emplace_back(f, j);
+          }
+        }
+      }
+    }
+#pragma omp critical
+    stack.insert(stack.end(), reflex.begin(), reflex.end());
+  }
+  // In one order whatever the threads did, so that the flips (and the run) are reproducible.
+  std::sort(stack.begin(), stack.end());
+  size_t flipsLeft = 20 * static_cast<size_t>(facets) + 1000;
+  std::vector<std::pair<int, int>> reflexKept;
+  size_t flipsSinceKept = 0;
+  for (;;)
+  {
+    if (stack.empty())
+    {
+      // Edges kept reflex for a fold may be flippable after later flips.
+      if (reflexKept.empty() || flipsSinceKept == 0)
+      {
+        break;
+      }
+      stack.swap(reflexKept);
+      flipsSinceKept = 0;
+    }
+    const auto [f, j] = stack.back();
+    stack.pop_back();
+    const int c = triangles[f][j], a = triangles[f][(j + 1) % 3], b = triangles[f][(j + 2) % 3];
+    const int g = across[f][j];
+    const int k = oppositeCorner(triangles[g], a, b);
+    const int d = triangles[g][k];
+    if (orientation(p[a], p[b], p[c], p[d]) != CGAL::POSITIVE)
+    {
+      continue; // convex (or flat) edge
+    }
+    if (orientation(p[c], p[a], p[d], origin) != CGAL::NEGATIVE ||
+      orientation(p[d], p[b], p[c], origin) != CGAL::NEGATIVE)
+    {
+      reflexKept.emplace_back(f, j);
+      continue;
+    }
+    if (flipsLeft-- == 0)
+    {
+      return false;
+    }
+    ++flipsSinceKept;
+    // f = (c, a, b) and g = (d, b, a) become f = (c, a, d) and g = (d, b, c).
+    const int nfA = across[f][(j + 1) % 3], nfB = across[f][(j + 2) % 3];
+    const int ngB = across[g][(k + 1) % 3], ngA = across[g][(k + 2) % 3];
+    triangles[f] = { c, a, d };
+    across[f] = { ngB, g, nfB };
+    triangles[g] = { d, b, c };
+    across[g] = { nfA, f, ngA };
+    for (int m = 0; m < 3; ++m)
+    {
+      if (across[ngB][m] == g)
+      {
+        across[ngB][m] = f;
+      }
+      if (across[nfA][m] == f)
+      {
+        across[nfA][m] = g;
+      }
+    }
+    stack.emplace_back(f, 0);
+    stack.emplace_back(f, 2);
+    stack.emplace_back(g, 0);
+    stack.emplace_back(g, 2);
+  }
+  // Recheck the edges kept: every one must have become convex.
+  for (const auto& [f, j] : reflexKept)
+  {
+    const int a = triangles[f][(j + 1) % 3], b = triangles[f][(j + 2) % 3];
+    const int c = triangles[f][j];
+    const int g = across[f][j];
+    const int d = triangles[g][oppositeCorner(triangles[g], a, b)];
+    if (orientation(p[a], p[b], p[c], p[d]) == CGAL::POSITIVE)
+    {
+      return false;
+    }
+  }
+  return true;
 }
 } // namespace
 
@@ -94,84 +218,129 @@ bool SphericalPowerDiagram::build(const std::vector<Vec3>& diracs, const std::ve
     hint = v->cell();
   }
   this->Triangles.clear();
+  this->Across.clear();
   this->Offsets.assign(n + 1, 0);
   this->HiddenCount = n;
   if (t.dimension() < 3)
   {
     return false;
   }
-  // Number the hull facets (the infinite cells) and count each Dirac's facets.
+  // Number the hull facets (the infinite cells).
   std::vector<Triangulation::Cell_handle> hull;
   t.incident_cells(t.infinite_vertex(), std::back_inserter(hull));
-  this->Triangles.resize(hull.size());
-  for (size_t f = 0; f < hull.size(); ++f)
+  const int facets = static_cast<int>(hull.size());
+  this->Triangles.resize(facets);
+  this->Across.resize(facets);
+  for (int f = 0; f < facets; ++f)
+  {
+    hull[f]->info() = f;
+  }
+  for (int f = 0; f < facets; ++f)
   {
     const auto c = hull[f];
-    c->info() = static_cast<int>(f);
     const int k = c->index(t.infinite_vertex());
     // vertex_triple_index orders a facet's vertices counter-clockwise seen from the opposite
     // vertex, here the infinite one: from outside the hull.
     for (int j = 0; j < 3; ++j)
     {
-      const int id = c->vertex(Triangulation::vertex_triple_index(k, j))->info();
-      this->Triangles[f][j] = id;
+      this->Triangles[f][j] = c->vertex(Triangulation::vertex_triple_index(k, j))->info();
+      this->Across[f][j] = c->neighbor(Triangulation::vertex_triple_index(k, j))->info();
+    }
+  }
+  return this->finishCells();
+}
+
+bool SphericalPowerDiagram::buildFrom(const SphericalPowerDiagram& previous,
+  const std::vector<Vec3>& diracs, const std::vector<Height>& psi)
+{
+  const int n = static_cast<int>(diracs.size());
+  if (previous.size() != n || previous.HiddenCount > 0 || previous.Triangles.empty())
+  {
+    return this->build(diracs, psi);
+  }
+  std::vector<Kernel::Point_3> points(n);
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < n; ++i)
+  {
+    const double s = static_cast<double>(std::exp(-psi[i].value()));
+    points[i] = Kernel::Point_3(s * diracs[i].x, s * diracs[i].y, s * diracs[i].z);
+  }
+  this->Triangles = previous.Triangles;
+  this->Across = previous.Across;
+  this->Diracs = diracs;
+  this->Psi = psi;
+  if (!flipToHull(points, this->Triangles, this->Across))
+  {
+    this->Triangles.clear();
+    this->Across.clear();
+    this->Offsets.assign(n + 1, 0);
+    this->HiddenCount = 1;
+    return false;
+  }
+  return this->finishCells();
+}
+
+bool SphericalPowerDiagram::finishCells()
+{
+  const int n = static_cast<int>(this->Diracs.size());
+  const int facets = static_cast<int>(this->Triangles.size());
+  this->Offsets.assign(n + 1, 0);
+  for (const Triangle& tri : this->Triangles)
+  {
+    for (const int id : tri)
+    {
       ++this->Offsets[id + 1];
     }
   }
+  this->HiddenCount = n;
   for (int i = 0; i < n; ++i)
   {
     this->HiddenCount -= this->Offsets[i + 1] > 0;
     this->Offsets[i + 1] += this->Offsets[i];
   }
-  // Facet neighbours: across the edge opposite corner j of facet f.
-  const int facets = static_cast<int>(hull.size());
-  std::vector<std::array<int, 3>> across(facets);
-  for (int f = 0; f < facets; ++f)
-  {
-    const auto c = hull[f];
-    const int k = c->index(t.infinite_vertex());
-    for (int j = 0; j < 3; ++j)
-    {
-      across[f][j] = c->neighbor(Triangulation::vertex_triple_index(k, j))->info();
-    }
-  }
   this->Vertices.resize(facets);
-  bool originInside = true;
+  int facetsFacingOrigin = 0;
+#pragma omp parallel for schedule(static) reduction(+ : facetsFacingOrigin)
   for (int f = 0; f < facets; ++f)
   {
     const Triangle& tri = this->Triangles[f];
-    const Vec3 normal = facetNormal(
-      diracs[tri[0]], diracs[tri[1]], diracs[tri[2]], psi[tri[0]], psi[tri[1]], psi[tri[2]]);
+    const Vec3 normal = facetNormal(this->Diracs[tri[0]], this->Diracs[tri[1]],
+      this->Diracs[tri[2]], this->Psi[tri[0]], this->Psi[tri[1]], this->Psi[tri[2]]);
     this->Vertices[f] = normalized(normal);
     // The origin is strictly inside when it is strictly behind every facet's plane.
-    originInside = originInside && dot(normal, diracs[tri[0]]) > 0.0;
+    facetsFacingOrigin += !(dot(normal, this->Diracs[tri[0]]) > 0.0);
   }
+  const bool originInside = facetsFacingOrigin == 0;
   // Rings: around Dirac a of facet (a, b, c) the next facet counter-clockwise is the one across
   // the edge (a, c), which is opposite b; the arc between the two facets' vertices is shared
   // with c.
   this->Ring.assign(this->Offsets[n], -1);
   this->Neighbors.assign(this->Offsets[n], -1);
-  std::vector<char> done(n, 0);
-  for (int f0 = 0; f0 < facets; ++f0)
+  // Each ring starts at the Dirac's first facet: 3 f + j, corner j of facet f.
+  std::vector<int> firstCorner(n, -1);
+  for (int f = facets - 1; f >= 0; --f)
   {
-    for (int j0 = 0; j0 < 3; ++j0)
+    for (int j = 2; j >= 0; --j)
     {
-      const int a = this->Triangles[f0][j0];
-      if (done[a])
-      {
-        continue;
-      }
-      done[a] = 1;
-      int f = f0, j = j0;
-      for (int k = this->Offsets[a]; k < this->Offsets[a + 1]; ++k)
-      {
-        this->Ring[k] = f;
-        this->Neighbors[k] = this->Triangles[f][(j + 2) % 3];
-        const int next = across[f][(j + 1) % 3];
-        const Triangle& nt = this->Triangles[next];
-        j = nt[0] == a ? 0 : (nt[1] == a ? 1 : 2);
-        f = next;
-      }
+      firstCorner[this->Triangles[f][j]] = 3 * f + j;
+    }
+  }
+#pragma omp parallel for schedule(static)
+  for (int a = 0; a < n; ++a)
+  {
+    if (firstCorner[a] < 0)
+    {
+      continue;
+    }
+    int f = firstCorner[a] / 3, j = firstCorner[a] % 3;
+    for (int k = this->Offsets[a]; k < this->Offsets[a + 1]; ++k)
+    {
+      this->Ring[k] = f;
+      this->Neighbors[k] = this->Triangles[f][(j + 2) % 3];
+      const int next = this->Across[f][(j + 1) % 3];
+      const Triangle& nt = this->Triangles[next];
+      j = nt[0] == a ? 0 : (nt[1] == a ? 1 : 2);
+      f = next;
     }
   }
   return originInside;

@@ -9,6 +9,7 @@
 #include "Common/Geometry.h"
 #include "Transport/Height.h"
 
+#include <array>
 #include <vector>
 
 namespace otparam
@@ -20,6 +21,14 @@ public:
   // False when the origin is not strictly inside the hull of the p_i (the cells do not cover
   // the sphere: every Dirac lies in one closed hemisphere).
   bool build(const std::vector<Vec3>& diracs, const std::vector<Height>& psi);
+  // The same diagram found by flipping the hull of previous (the same Diracs at other heights,
+  // none hidden) until it is convex: a Newton step changes few edges. When the flips get stuck,
+  // the diagram is left empty with hiddenCount() 1 and false is returned: in every case
+  // measured (1e5 Diracs of contrast 1e4: 11 of 30 trials) a Dirac had sunk inside the hull, and
+  // a Newton trial is rejected then without a new hull; the damping shrinks the step until the
+  // flips go through.
+  bool buildFrom(const SphericalPowerDiagram& previous, const std::vector<Vec3>& diracs,
+    const std::vector<Height>& psi);
 
   int size() const { return static_cast<int>(Offsets.size()) - 1; }
   bool hidden(int i) const { return Offsets[i] == Offsets[i + 1]; }
@@ -40,9 +49,14 @@ public:
   std::vector<Vec3> cell(int i) const;
 
 private:
+  // Offsets, rings, neighbours and cell vertices from Triangles and Across; false when the origin
+  // is not strictly inside.
+  bool finishCells();
+
   std::vector<Vec3> Diracs;
   std::vector<Height> Psi;
   std::vector<Triangle> Triangles;
+  std::vector<std::array<int, 3>> Across; // the triangle across the edge opposite each corner
   std::vector<Vec3> Vertices;
   std::vector<int> Offsets, Ring, Neighbors;
   int HiddenCount = 0;
