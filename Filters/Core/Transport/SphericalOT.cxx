@@ -5,6 +5,10 @@
 #include "Transport/MultiscaleStart.h"
 #include "Transport/SphericalPowerDiagram.h"
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -16,6 +20,24 @@ namespace otparam
 namespace
 {
 using Clock = std::chrono::steady_clock;
+
+int maximumThreads()
+{
+#ifdef _OPENMP
+  return omp_get_max_threads();
+#else
+  return 1;
+#endif
+}
+
+int threadNumber()
+{
+#ifdef _OPENMP
+  return omp_get_thread_num();
+#else
+  return 0;
+#endif
+}
 double secondsSince(Clock::time_point t0)
 {
   return std::chrono::duration<double>(Clock::now() - t0).count();
@@ -67,14 +89,18 @@ void evaluate(const std::vector<Vec3>& diracs, const std::vector<Height>& psi,
   }
   t0 = Clock::now();
   const std::vector<Vec3>& vertices = diagram.cellVertices();
+  // Each thread takes one contiguous block of Diracs, and the blocks' couplings are joined in
+  // order: the couplings come in the order of a serial loop whatever the number of threads, so
+  // that the Newton system (and the run) is reproducible without sorting them.
+  std::vector<std::vector<Eigen::Triplet<double>>> blocks(maximumThreads());
 #pragma omp parallel
   {
-    std::vector<Eigen::Triplet<double>> local;
+    std::vector<Eigen::Triplet<double>>& local = blocks[threadNumber()];
     std::vector<Vec3> polygon;
-#pragma omp for schedule(dynamic, 512) nowait
+#pragma omp for schedule(static)
     for (int i = 0; i < n; ++i)
     {
-      polygon = diagram.cell(i);
+      diagram.cell(i, polygon);
       ev.cellMass[i] = std::max(0.0, sphericalPolygonArea(polygon));
       ev.moment[i] = sphericalPolygonMoment(polygon);
       const int* ring = diagram.ringBegin(i);
@@ -93,13 +119,11 @@ void evaluate(const std::vector<Vec3>& diracs, const std::vector<Height>& psi,
         }
       }
     }
-#pragma omp critical
-    ev.coupling.insert(ev.coupling.end(), local.begin(), local.end());
   }
-  // Row order, so that the Newton system (and the run) does not depend on thread timing.
-  std::stable_sort(ev.coupling.begin(), ev.coupling.end(),
-    [](const Eigen::Triplet<double>& a, const Eigen::Triplet<double>& b)
-    { return a.row() < b.row() || (a.row() == b.row() && a.col() < b.col()); });
+  for (const auto& block : blocks)
+  {
+    ev.coupling.insert(ev.coupling.end(), block.begin(), block.end());
+  }
   ev.minMass = n ? *std::min_element(ev.cellMass.begin(), ev.cellMass.end()) : 0.0;
   ev.emptyCells = static_cast<int>(std::count(ev.cellMass.begin(), ev.cellMass.end(), 0.0));
   timing.secondsIntegration += secondsSince(t0);

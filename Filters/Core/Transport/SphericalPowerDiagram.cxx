@@ -357,11 +357,17 @@ Vec3 SphericalPowerDiagram::polytopeVertex(int triangle) const
 std::vector<Vec3> SphericalPowerDiagram::cell(int i) const
 {
   std::vector<Vec3> polygon;
+  this->cell(i, polygon);
+  return polygon;
+}
+
+void SphericalPowerDiagram::cell(int i, std::vector<Vec3>& polygon) const
+{
+  polygon.clear();
   for (const int* f = this->ringBegin(i); f != this->ringEnd(i); ++f)
   {
     polygon.push_back(this->Vertices[*f]);
   }
-  return polygon;
 }
 
 } // namespace otparam

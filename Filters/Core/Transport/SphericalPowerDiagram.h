@@ -47,6 +47,7 @@ public:
   const int* ringEnd(int i) const { return Ring.data() + Offsets[i + 1]; }
   const int* neighborsBegin(int i) const { return Neighbors.data() + Offsets[i]; }
   std::vector<Vec3> cell(int i) const;
+  void cell(int i, std::vector<Vec3>& polygon) const; // into a buffer kept by the caller
 
 private:
   // Offsets, rings, neighbours and cell vertices from Triangles and Across; false when the origin
