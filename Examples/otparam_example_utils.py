@@ -138,45 +138,20 @@ def letter_c(rings=8, sectors=72):
 
 
 def read_surface(path):
-    """A triangle surface from any file VTK reads, or .off (VTK 9.2 has no OFF reader)."""
-    from vtkmodules.vtkCommonCore import vtkPoints
-    from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData
+    """A triangle surface from any file VTK reads, or .off / .obj (vtkOTParamMeshReader)."""
     from vtkmodules.vtkFiltersCore import vtkTriangleFilter
 
     extension = path.lower().rsplit(".", 1)[-1]
-    if extension == "off":
-        points, faces = vtkPoints(), vtkCellArray()
-        points.SetDataTypeToDouble()
-        with open(path) as f:
-            tokens = [t for line in f for t in line.split("#")[0].split()]
-        nv, nf = int(tokens[1]), int(tokens[2])
-        for v in range(nv):
-            points.InsertNextPoint(*(float(t) for t in tokens[4 + 3 * v:7 + 3 * v]))
-        p = 4 + 3 * nv
-        for _ in range(nf):
-            k = int(tokens[p])
-            faces.InsertNextCell(k, [int(t) for t in tokens[p + 1:p + 1 + k]])
-            p += 1 + k
-        surface = vtkPolyData()
-        surface.SetPoints(points)
-        surface.SetPolys(faces)
-        return surface
-    if extension == "obj":
-        # VTK's OBJ reader splits vertices at texture seams: read positions and faces directly.
-        points, faces = vtkPoints(), vtkCellArray()
-        points.SetDataTypeToDouble()
-        with open(path) as f:
-            for line in f:
-                if line.startswith("v "):
-                    points.InsertNextPoint(*(float(t) for t in line.split()[1:4]))
-                elif line.startswith("f "):
-                    ids = [int(t.split("/")[0]) for t in line.split()[1:]]
-                    n = points.GetNumberOfPoints()
-                    faces.InsertNextCell(len(ids), [i - 1 if i > 0 else n + i for i in ids])
-        surface = vtkPolyData()
-        surface.SetPoints(points)
-        surface.SetPolys(faces)
-        return surface
+    if extension in ("off", "obj"):
+        # The project's reader: VTK 9.2 has no OFF reader, and its OBJ reader splits vertices
+        # at texture seams and crashes on texture indices without vt lines.
+        from otparam import vtkOTParamMeshReader
+        reader = vtkOTParamMeshReader()
+        reader.SetFileName(path)
+        reader.Update()
+        if reader.GetOutput().GetNumberOfPoints() == 0:
+            sys.exit(f"cannot read {path} (see the error above)")
+        return reader.GetOutput()
     if extension == "vtp":
         from vtkmodules.vtkIOXML import vtkXMLPolyDataReader as Reader
     elif extension == "vtk":

@@ -1,4 +1,5 @@
-"""Loads OTParam.so into ParaView and runs its filters: Semi-Discrete OT Solver on Diracs read
+"""Loads OTParam.so into ParaView and runs its filters and its mesh reader (OpenDataFile on .off
+and .obj, Save Data as .obj read back with its texture coordinates): Semi-Discrete OT Solver on Diracs read
 from a .vtp, Spherical OT Solver on Diracs on the unit sphere read from a .vtp, Conformal Disk Map on a triangulated ParaView Plane, Adaptive Density Sampler on
 a triangulated disk read from a .vtp (and the OT solver on its samples), Area-Preserving
 Parameterization on a bumpy plane (all three ports), on a closed sphere (Domain Automatic: the
@@ -348,9 +349,42 @@ check(fd.GetArray("MeanAbsLogAreaRatio").GetValue(0) <= 0.03,
 tcoords = surface.GetPointData().GetTCoords()
 check(tcoords is not None and tcoords.GetName() == "AreaPreservingCoordinates",
       "texture coordinates AreaPreservingCoordinates")
+# Export for texture workflows: Save Data as .obj keeps the texture coordinates; read back by
+# the OTParam Mesh Reader.
+exported = os.path.join(work_dir, "mapped.obj")
+SaveData(exported, proxy=param)
+back = OTParamMeshReader(FileName=exported)
+back.UpdatePipeline()
+back_data = servermanager.Fetch(back)
+back_tcoords = back_data.GetPointData().GetTCoords()
+check(back_data.GetNumberOfPoints() == surface.GetNumberOfPoints() and back_tcoords is not None
+      and max(abs(a - b) for i in range(surface.GetNumberOfPoints())
+              for a, b in zip(tcoords.GetTuple2(i), back_tcoords.GetTuple2(i))) <= 1e-12,
+      "SaveData .obj keeps the texture coordinates (read back to 1e-12)")
+Delete(back)
 check(table.IsA("vtkTable") and table.GetNumberOfRows() == 50
       and table.GetColumnByName("AreaPreservingLogAreaRatio") is not None,
       "port 2: the histogram table")
+
+# ---- The mesh reader: OpenDataFile picks it for .off (ParaView 5.11 has no OFF reader) and
+# for .obj (its own OBJ reader crashes on face_dense_gpp_5k.obj: texture indices, no vt lines).
+if os.environ.get("OTPARAM_SHARED_DATA_DIR"):
+    meshes = os.path.join(os.environ["OTPARAM_SHARED_DATA_DIR"], "meshes")
+    for mesh, points, triangles in (("hand_choi_53k.off", 53054, 105860),
+                                    ("face_dense_gpp_5k.obj", 5101, 10000)):
+        opened = OpenDataFile(os.path.join(meshes, mesh))
+        check(opened is not None and opened.GetXMLName() == "OTParamMeshReader",
+              f"OpenDataFile picks the OTParam Mesh Reader for {mesh}")
+        named = OTParamMeshReader(FileName=os.path.join(meshes, mesh))
+        for proxy in (opened, named):
+            if proxy is None:
+                continue
+            proxy.UpdatePipeline()
+            info = proxy.GetDataInformation()
+            check(info.GetNumberOfPoints() == points and info.GetNumberOfCells() == triangles,
+                  f"{mesh}: {info.GetNumberOfPoints()} points, {info.GetNumberOfCells()} "
+                  f"triangles (expected {points}, {triangles})")
+            Delete(proxy)
 
 # ---- A real scan with holes (the shared bunny: 4 holes besides the opening at its base)
 # through Area-Preserving Parameterization with default properties.

@@ -215,39 +215,16 @@ def shared_mesh(name):
 
 
 def read_mesh(path):
-    """A shared .off/.obj mesh as vtkPolyData (double points, triangles), numbering kept.
-    (VTK 9.2 has no OFF reader, and its OBJ reader may split vertices.)"""
-    import numpy as np
-    from vtkmodules.util.numpy_support import numpy_to_vtk, numpy_to_vtkIdTypeArray
-    points, faces = [], []
-    with open(path) as f:
-        if path.lower().endswith(".off"):
-            tokens = [t for line in f for t in line.split("#")[0].split()]
-            nv, nf = int(tokens[1]), int(tokens[2])
-            points = np.array(tokens[4:4 + 3 * nv], float).reshape(nv, 3)
-            p = 4 + 3 * nv
-            for _ in range(nf):
-                k = int(tokens[p])
-                faces.append([int(x) for x in tokens[p + 1:p + 1 + k]])
-                p += 1 + k
-        else:
-            for line in f:
-                if line.startswith("v "):
-                    points.append([float(x) for x in line.split()[1:4]])
-                elif line.startswith("f "):
-                    ids = [int(tok.split("/")[0]) for tok in line.split()[1:]]
-                    faces.append([i - 1 if i > 0 else len(points) + i for i in ids])
-            points = np.array(points, float)
-    triangles = np.array([[f[0], f[k], f[k + 1]] for f in faces for k in range(1, len(f) - 1)],
-                         dtype=np.int64)
-    vtk_points = vtkPoints()
-    vtk_points.SetData(numpy_to_vtk(np.ascontiguousarray(points), deep=True))
-    cells = np.hstack([np.full((len(triangles), 1), 3, np.int64), triangles]).ravel()
-    polys = vtkCellArray()
-    polys.SetCells(len(triangles), numpy_to_vtkIdTypeArray(cells, deep=True))
+    """A shared .off/.obj mesh as vtkPolyData (double points, triangles), numbering kept: the
+    project's vtkOTParamMeshReader (VTK 9.2 has no OFF reader, and its OBJ reader may split
+    vertices)."""
+    from otparam import vtkOTParamMeshReader
+    reader = vtkOTParamMeshReader()
+    reader.SetFileName(path)
+    reader.Update()
     data = vtkPolyData()
-    data.SetPoints(vtk_points)
-    data.SetPolys(polys)
+    data.ShallowCopy(reader.GetOutput())
+    data.GetFieldData().Initialize()  # only the file's geometry, as the tests expect
     return data
 
 
