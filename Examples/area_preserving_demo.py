@@ -169,11 +169,15 @@ def render_density_and_samples(conformal_image, samples, path, size):
     renderer.AddActor(disk)
     renderer.AddActor(dots_actor)
     renderer.AddActor2D(bar)
-    window = new_window(size, size)
+    # A window wider than high: the disk on the left with a margin, the colour bar beside it.
+    window = new_window(int(1.3 * size), size)
     window.AddRenderer(renderer)
     top_view(renderer)
-    renderer.GetActiveCamera().SetPosition(0.15, 0.0, 5.0)
-    renderer.GetActiveCamera().SetFocalPoint(0.15, 0.0, 0.0)
+    shift = 1.3 * 1.1 - 1.1  # the visible half-width minus the disk's half-width and margin
+    renderer.GetActiveCamera().SetPosition(shift, 0.0, 5.0)
+    renderer.GetActiveCamera().SetFocalPoint(shift, 0.0, 0.0)
+    bar.SetPosition(0.82, 0.1)
+    bar.SetHeight(0.75)
     return render_to_png(window, path)
 
 
@@ -297,11 +301,11 @@ def render_histograms(table, path, size):
 def write_figures(param, conformal, sampler, transport, directory, size):
     """Every PNG of the figure set (see the module doc)."""
     from ot_solver_demo import render_png as render_power_diagram
-    # Twice: under Xvfb, Debian's VTK 9.2 renders the first picture of this figure black (not
-    # a simple sphere, not the same figure again; cause not found), the second one right.
-    for _ in range(2):
-        render_density_and_samples(conformal.GetOutput(), sampler.GetOutput(),
-                                   os.path.join(directory, "conformal_density_samples.png"), size)
+    # Under Xvfb, Debian's VTK 9.2 renders the first picture of this figure black (not a
+    # simple sphere, not the same figure again; cause not found): one render to waste, unsaved.
+    render_density_and_samples(conformal.GetOutput(), sampler.GetOutput(), None, 200)
+    render_density_and_samples(conformal.GetOutput(), sampler.GetOutput(),
+                               os.path.join(directory, "conformal_density_samples.png"), size)
     power = os.path.join(directory, "power_diagram.png")
     render_power_diagram(transport, power, size)
     print("wrote", power)
