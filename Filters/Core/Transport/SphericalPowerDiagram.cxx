@@ -53,6 +53,33 @@ int oppositeCorner(const Triangle& t, int a, int b)
   return t[0] != a && t[0] != b ? 0 : (t[1] != a && t[1] != b ? 1 : 2);
 }
 
+// The lifted point p = y e^-psi of a Dirac, whose hull the diagram is.
+Kernel::Point_3 liftedPoint(const Vec3& y, const Height& psi)
+{
+  const double s = static_cast<double>(std::exp(-psi.value()));
+  return Kernel::Point_3(s * y.x, s * y.y, s * y.z);
+}
+
+// The two hull triangles at the edge opposite corner j of triangle f: f = (c, a, b) and
+// g = (d, b, a), d at corner k of g.
+struct EdgeQuad
+{
+  int a, b, c, d, g, k;
+};
+
+EdgeQuad edgeQuad(const std::vector<Triangle>& triangles,
+  const std::vector<std::array<int, 3>>& across, int f, int j)
+{
+  EdgeQuad q;
+  q.c = triangles[f][j];
+  q.a = triangles[f][(j + 1) % 3];
+  q.b = triangles[f][(j + 2) % 3];
+  q.g = across[f][j];
+  q.k = oppositeCorner(triangles[q.g], q.a, q.b);
+  q.d = triangles[q.g][q.k];
+  return q;
+}
+
 // Lawson's flips carried to the hull: starting from the hull of the same Diracs at earlier
 // heights (a triangulated sphere around the origin), flips every reflex edge whose flip keeps
 // the triangles around the origin, until every edge is convex. A closed surface that is convex at
@@ -67,32 +94,29 @@ bool flipToHull(const std::vector<Kernel::Point_3>& p, std::vector<Triangle>& tr
 {
   const Kernel::Point_3 origin(0.0, 0.0, 0.0);
   const auto orientation = Kernel().orientation_3_object();
+  // d above the plane of (a, b, c), seen from outside: the edge (a, b) folds inward.
+  auto reflex = [&](const EdgeQuad& q)
+  { return orientation(p[q.a], p[q.b], p[q.c], p[q.d]) == CGAL::POSITIVE; };
   // Most edges of the old hull stay convex: they are checked in parallel, and only the reflex
   // ones start the (sequential) flips.
   const int facets = static_cast<int>(triangles.size());
   std::vector<std::pair<int, int>> stack;
 #pragma omp parallel
   {
-    std::vector<std::pair<int, int>> reflex;
+    std::vector<std::pair<int, int>> reflexEdges;
 #pragma omp for schedule(static) nowait
     for (int f = 0; f < facets; ++f)
     {
       for (int j = 0; j < 3; ++j)
       {
-        const int g = across[f][j];
-        if (f < g)
+        if (f < across[f][j] && reflex(edgeQuad(triangles, across, f, j)))
         {
-          const int a = triangles[f][(j + 1) % 3], b = triangles[f][(j + 2) % 3];
-          const int d = triangles[g][oppositeCorner(triangles[g], a, b)];
-          if (orientation(p[a], p[b], p[triangles[f][j]], p[d]) == CGAL::POSITIVE)
-          {
-            reflex.emplace_back(f, j);
-          }
+          reflexEdges.emplace_back(f, j);
         }
       }
     }
 #pragma omp critical
-    stack.insert(stack.end(), reflex.begin(), reflex.end());
+    stack.insert(stack.end(), reflexEdges.begin(), reflexEdges.end());
   }
   // In one order whatever the threads did, so that the flips (and the run) are reproducible.
   std::sort(stack.begin(), stack.end());
@@ -113,14 +137,12 @@ bool flipToHull(const std::vector<Kernel::Point_3>& p, std::vector<Triangle>& tr
     }
     const auto [f, j] = stack.back();
     stack.pop_back();
-    const int c = triangles[f][j], a = triangles[f][(j + 1) % 3], b = triangles[f][(j + 2) % 3];
-    const int g = across[f][j];
-    const int k = oppositeCorner(triangles[g], a, b);
-    const int d = triangles[g][k];
-    if (orientation(p[a], p[b], p[c], p[d]) != CGAL::POSITIVE)
+    const EdgeQuad q = edgeQuad(triangles, across, f, j);
+    if (!reflex(q))
     {
       continue; // convex (or flat) edge
     }
+    const int a = q.a, b = q.b, c = q.c, d = q.d, g = q.g, k = q.k;
     if (orientation(p[c], p[a], p[d], origin) != CGAL::NEGATIVE ||
       orientation(p[d], p[b], p[c], origin) != CGAL::NEGATIVE)
     {
@@ -156,18 +178,9 @@ bool flipToHull(const std::vector<Kernel::Point_3>& p, std::vector<Triangle>& tr
     stack.emplace_back(g, 2);
   }
   // Recheck the edges kept: every one must have become convex.
-  for (const auto& [f, j] : reflexKept)
-  {
-    const int a = triangles[f][(j + 1) % 3], b = triangles[f][(j + 2) % 3];
-    const int c = triangles[f][j];
-    const int g = across[f][j];
-    const int d = triangles[g][oppositeCorner(triangles[g], a, b)];
-    if (orientation(p[a], p[b], p[c], p[d]) == CGAL::POSITIVE)
-    {
-      return false;
-    }
-  }
-  return true;
+  return std::none_of(reflexKept.begin(), reflexKept.end(),
+    [&](const std::pair<int, int>& edge)
+    { return reflex(edgeQuad(triangles, across, edge.first, edge.second)); });
 }
 } // namespace
 
@@ -204,8 +217,7 @@ bool SphericalPowerDiagram::build(const std::vector<Vec3>& diracs, const std::ve
   std::vector<IndexedPoint> points(n);
   for (int i = 0; i < n; ++i)
   {
-    const double s = static_cast<double>(std::exp(-psi[i].value()));
-    points[i] = { Kernel::Point_3(s * diracs[i].x, s * diracs[i].y, s * diracs[i].z), i };
+    points[i] = { liftedPoint(diracs[i], psi[i]), i };
   }
   CGAL::spatial_sort(points.begin(), points.end(),
     CGAL::Spatial_sort_traits_adapter_3<Kernel, CGAL::First_of_pair_property_map<IndexedPoint>>());
@@ -262,8 +274,7 @@ bool SphericalPowerDiagram::buildFrom(const SphericalPowerDiagram& previous,
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i)
   {
-    const double s = static_cast<double>(std::exp(-psi[i].value()));
-    points[i] = Kernel::Point_3(s * diracs[i].x, s * diracs[i].y, s * diracs[i].z);
+    points[i] = liftedPoint(diracs[i], psi[i]);
   }
   this->Triangles = previous.Triangles;
   this->Across = previous.Across;
