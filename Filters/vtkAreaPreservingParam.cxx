@@ -1,13 +1,16 @@
 #include "vtkAreaPreservingParam.h"
 
+#include "vtkCellData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
+#include "vtkIntArray.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkTable.h"
 
+#include "Mesh/Checkerboard.h"
 #include "OTParamConvert.h"
 #include "Pipeline/AreaPreservingPipeline.h"
 
@@ -43,6 +46,39 @@ otparam::AreaPreservingOptions MakeOptions(vtkAreaPreservingParam* self)
     return !self->GetAbortExecute();
   };
   return options;
+}
+
+// Squares across the disk's diameter; longitude sectors around the sphere (and half as many
+// bands): coarse enough to read on a 5k-triangle surface.
+constexpr int CheckerboardSquares = 8;
+constexpr int CheckerboardSectors = 12;
+
+// The map made visible without a texture: ParaView (and VTK's mappers) colour by the active
+// scalars, so the checkerboard becomes the active cell scalars; active point scalars the
+// input brings keep precedence (ParaView and VTK take point scalars first).
+void AddCheckerboard(vtkCellData* cells, const std::vector<int>& parity)
+{
+  vtkNew<vtkIntArray> checkerboard;
+  checkerboard->SetName("Checkerboard");
+  checkerboard->SetNumberOfValues(static_cast<vtkIdType>(parity.size()));
+  for (std::size_t t = 0; t < parity.size(); ++t)
+  {
+    checkerboard->SetValue(static_cast<vtkIdType>(t), parity[t]);
+  }
+  cells->AddArray(checkerboard);
+  cells->SetActiveScalars("Checkerboard");
+}
+
+std::vector<int> Checkerboard(const otparam::AreaPreservingResult& run)
+{
+  return otparam::diskCheckerboard(
+    run.conformal.surface.mesh.triangles, run.composition.uv, CheckerboardSquares);
+}
+
+std::vector<int> Checkerboard(const otparam::SphereParameterizationResult& run)
+{
+  return otparam::sphereCheckerboard(
+    run.conformal.surface.mesh.triangles, run.composition.sphere, CheckerboardSectors);
 }
 
 // Port 1: the flattened disk mesh.
@@ -196,6 +232,9 @@ void WriteRun(const Run& run, int bins, vtkPolyData* input, vtkInformationVector
   WriteDomainMesh(run, domainMesh);
   WriteSurface(run, input, output);
   WriteHistogramsOf(run, bins, vtkTable::GetData(outputVector, 2));
+  const std::vector<int> checkerboard = Checkerboard(run);
+  AddCheckerboard(domainMesh->GetCellData(), checkerboard);
+  AddCheckerboard(output->GetCellData(), checkerboard);
   vtkNew<vtkPolyData> figures;
   WriteFigures(run, figures);
   for (int a = 0; a < figures->GetFieldData()->GetNumberOfArrays(); ++a)

@@ -33,8 +33,9 @@ else:
     plugin, work_dir = os.environ["OTPARAM_PLUGIN"], os.environ["OTPARAM_TEST_DIR"]
 os.makedirs(work_dir, exist_ok=True)
 passed_marker = os.path.join(work_dir, "PASSED")
-if os.path.exists(passed_marker):
-    os.remove(passed_marker)
+for stale in (passed_marker, os.path.join(work_dir, "FAILURES")):
+    if os.path.exists(stale):
+        os.remove(stale)
 
 failures = []
 
@@ -43,6 +44,9 @@ def check(condition, message):
     if not condition:
         failures.append(message)
         print("FAIL:", message, flush=True)
+        # The GUI keeps the script's output in its own window: leave the failures in a file.
+        with open(os.path.join(work_dir, "FAILURES"), "a") as f:
+            f.write(message + "\n")
 
 
 # ---- Diracs with Mass, written by this test (50 random points in the disk, fixed seed).
@@ -366,6 +370,40 @@ check(table.IsA("vtkTable") and table.GetNumberOfRows() == 50
       and table.GetColumnByName("AreaPreservingLogAreaRatio") is not None,
       "port 2: the histogram table")
 
+
+def checkerboard_shown_on_apply(source, label):
+    """What Apply shows (the GUI's pqApplyBehavior calls ShowInPreferredView on every port):
+    the surface coloured by its Checkerboard cell scalars, the domain mesh held back, the
+    histograms in a bar chart. The two colours cover equal shares of an area-preserving map."""
+    controller = servermanager.vtkSMParaViewPipelineControllerWithRendering()
+    render_view = CreateView("RenderView")
+    shown = [controller.ShowInPreferredView(source.SMProxy, port, render_view.SMProxy)
+             for port in range(3)]
+    check(shown[0] is not None and shown[0].GetXMLName() == "RenderView" and shown[1] is None
+          and shown[2] is not None and shown[2].GetXMLName() == "XYBarChartView",
+          f"{label}: Apply shows the surface, holds back the domain mesh, charts the histograms")
+    display = GetDisplayProperties(source, render_view)
+    check(list(display.ColorArrayName) == ["CELLS", "Checkerboard"],
+          f"{label}: the surface comes up coloured by Checkerboard ({list(display.ColorArrayName)})")
+    mapped_surface = servermanager.Fetch(source, idx=0)
+    checker = mapped_surface.GetCellData().GetScalars()
+    area = [0.0, 0.0]
+    for t in range(mapped_surface.GetNumberOfCells()):
+        area[int(checker.GetValue(t))] += mapped_surface.GetCell(t).ComputeArea()
+    share = area[1] / sum(area)
+    print(f"{label}: Checkerboard 1 covers {share:.4f} of the surface", flush=True)
+    check(checker.GetName() == "Checkerboard" and abs(share - 0.5) <= 0.03,
+          f"{label}: the checkerboard's two colours cover equal areas ({share:.3f} of the surface)")
+    for view in (render_view, shown[2]):
+        Delete(servermanager._getPyProxy(view) if view is shown[2] else view)
+
+
+# In the GUI, views made here would split its layout and move the screenshots' framing; the
+# GUI part below checks what Apply shows on a screenshot instead.
+gui = os.environ.get("OTPARAM_SCREENSHOT") == "1"
+if not gui:
+    checkerboard_shown_on_apply(param, "bumpy plane")
+
 # ---- The mesh reader: OpenDataFile picks it for .off (ParaView 5.11 has no OFF reader) and
 # for .obj (its own OBJ reader crashes on face_dense_gpp_5k.obj: texture indices, no vt lines).
 if os.environ.get("OTPARAM_SHARED_DATA_DIR"):
@@ -433,6 +471,9 @@ sphere_tcoords = sphere_out.GetPointData().GetTCoords()
 check(sphere_tcoords is not None and sphere_tcoords.GetName() == "SphericalTextureCoordinates"
       and sphere_out.GetPointData().GetArray("AreaPreservingCoordinates").GetNumberOfComponents()
       == 3, "closed surface: longitude/latitude texture coordinates, 3D coordinates")
+
+if not gui:
+    checkerboard_shown_on_apply(on_sphere, "closed surface")
 
 # ---- Conformal Sphere Map on the same closed surface, and the sphere chain after it.
 check("ConformalSphereMap" in globals(), "LoadPlugin defines ConformalSphereMap")
@@ -571,31 +612,51 @@ if os.environ.get("OTPARAM_SCREENSHOT") == "1":
     display.Texture = CreateTexture(texture_png)
     display.RepeatTextures = 1
     display.ColorArrayName = [None, ""]
-    view.CameraFocalPoint = [0.0, 0.0, 0.0]
-    view.CameraPosition = [0.0, 0.0, 1.0]
-    view.CameraViewUp = [0.0, 1.0, 0.0]
-    view.ResetCamera()
-    Render(view)
-    face_png = os.path.join(work_dir, "area_preserving_face.png")
-    SaveScreenshot(face_png, view, ImageResolution=[500, 500])
+    def face_screenshot(face_view, name):
+        face_view.CameraFocalPoint = [0.0, 0.0, 0.0]
+        face_view.CameraPosition = [0.0, 0.0, 1.0]
+        face_view.CameraViewUp = [0.0, 1.0, 0.0]
+        face_view.ResetCamera()
+        Render(face_view)
+        png = os.path.join(work_dir, name)
+        SaveScreenshot(png, face_view, ImageResolution=[500, 500])
+        return png
+
+    face_png = face_screenshot(view, "area_preserving_face.png")
     baseline = os.path.join(os.environ["OTPARAM_BASELINE_DIR"], "TestPluginGUI_area_preserving_face.png")
+
+    def rgb(path):
+        image = vtkPNGReader()
+        image.SetFileName(path)
+        image.Update()
+        return vtk_to_numpy(image.GetOutput().GetPointData().GetScalars())[:, :3].astype(int)
+
     if not os.path.exists(baseline):
         check(False, f"no baseline {baseline}: look at {face_png} and commit it as the baseline")
     else:
         # vtkImageDifference's shift search and averaging forgive circles moved by a few
         # pixels (measured: thresholded error 0 with the area correction off); count the
         # pixels that changed colour instead: 1.5% with the correction off, 0 run to run.
-        def rgb(path):
-            image = vtkPNGReader()
-            image.SetFileName(path)
-            image.Update()
-            return vtk_to_numpy(image.GetOutput().GetPointData().GetScalars())[:, :3].astype(int)
-
         current, expected = rgb(face_png), rgb(baseline)
         changed = (numpy.abs(current - expected).max(axis=1) > 64).mean() \
             if current.shape == expected.shape else 1.0
         check(changed <= 0.005,
               f"{face_png}: {100 * changed:.2f}% of the pixels differ from {baseline} (> 0.5%)")
+    # What Apply shows, without any hand-made texture: the face coloured by its checkerboard.
+    # Both colours of the default map (Cool to Warm: blue for 0, red for 1) must fill it.
+    apply_view = CreateView("RenderView")
+    AssignViewToLayout(view=apply_view)
+    apply_view.OrientationAxesVisibility = 0
+    servermanager.vtkSMParaViewPipelineControllerWithRendering().ShowInPreferredView(
+        face.SMProxy, 0, apply_view.SMProxy)
+    apply_png = face_screenshot(apply_view, "apply_face_checkerboard.png")
+    pixels = rgb(apply_png)
+    red = (pixels[:, 0] > pixels[:, 2] + 60).mean()
+    blue = (pixels[:, 2] > pixels[:, 0] + 60).mean()
+    print(f"{apply_png}: {100 * red:.1f}% red, {100 * blue:.1f}% blue pixels", flush=True)
+    check(red >= 0.05 and blue >= 0.05,
+          f"{apply_png}: the face shows its checkerboard ({100 * red:.1f}% red, "
+          f"{100 * blue:.1f}% blue pixels)")
     chart = CreateView("XYBarChartView")
     AssignViewToLayout(view=chart)
     bars = Show(OutputPort(face, 2), chart)

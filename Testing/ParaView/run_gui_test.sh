@@ -8,5 +8,9 @@ OTPARAM_PLUGIN=$5 OTPARAM_TEST_DIR=$6 OTPARAM_SCREENSHOT=1
 export OTPARAM_PLUGIN OTPARAM_TEST_DIR OTPARAM_SCREENSHOT
 rm -f "$OTPARAM_TEST_DIR/PASSED"
 "$xvfb_run" -a -n "$display" -s "-screen 0 1280x1024x24" "$paraview" --dr "--script=$script" --exit
-test -f "$OTPARAM_TEST_DIR/PASSED" || { echo "the GUI script did not pass"; exit 1; }
+if ! test -f "$OTPARAM_TEST_DIR/PASSED"; then
+  echo "the GUI script did not pass"
+  cat "$OTPARAM_TEST_DIR/FAILURES" 2>/dev/null || echo "(no failed check: the script stopped early)"
+  exit 1
+fi
 echo "GUI script passed; screenshot: $OTPARAM_TEST_DIR/power_diagram.png"
