@@ -470,9 +470,8 @@ void steerOffsets(const DensityField& field, double power, double equalizedPower
   // Each cell's g-mass and area follow from g at its centroid: exact for a constant density,
   // first order otherwise.
   std::vector<double> equalized(n, 0.0), area(n, 0.0);
-  double total = 0.0;
   // Parallel: one density query (a box-tree search) per cell is the cost of this step.
-#pragma omp parallel for schedule(static) reduction(+ : total)
+#pragma omp parallel for schedule(static)
   for (long long i = 0; i < static_cast<long long>(n); ++i)
   {
     const double g = power > 0.0 ? field.value(cells.centroid[i]) : 1.0;
@@ -480,10 +479,12 @@ void steerOffsets(const DensityField& field, double power, double equalizedPower
     {
       equalized[i] = cells.mass[i] * std::pow(g, equalizedPower - power);
       area[i] = cells.mass[i] / std::pow(g, power);
-      total += equalized[i];
     }
   }
-  const double mean = total / static_cast<double>(n);
+  // Summed in one order: a reduction's order follows the thread count, and so would the
+  // samples (and the whole map) in their last digits.
+  const double mean =
+    std::accumulate(equalized.begin(), equalized.end(), 0.0) / static_cast<double>(n);
   for (size_t i = 0; i < n; ++i)
   {
     if (equalized[i] > 0.0)

@@ -151,7 +151,27 @@ PowerDiagram::Triangulation::Flips PowerDiagram::Triangulation::reweightByFlips(
   }
   else
   {
-    stack.assign(rt.finite_edges_begin(), rt.finite_edges_end());
+    // Every finite edge once, from the face that comes first in the triangulation's own order.
+    // Not rt.finite_edges_begin(): its edge iterator reports an edge from the face at the lower
+    // address (Face_handle::operator< compares pointers), so the flips, hence which face object
+    // ends up holding which triangle and how its vertices are rotated, depended on where malloc
+    // had put the face blocks; the power vertices and cell integrals then rounded differently
+    // from process to process (and after other work in the same process).
+    int serial = 0;
+    for (auto f = rt.all_faces_begin(); f != rt.all_faces_end(); ++f)
+    {
+      f->info() = serial++; // renumbered by build() once the flips are done
+    }
+    for (auto f = rt.all_faces_begin(); f != rt.all_faces_end(); ++f)
+    {
+      for (int k = 0; k < 3; ++k)
+      {
+        if (f->info() < f->neighbor(k)->info() && !rt.is_infinite(f, k))
+        {
+          stack.emplace_back(f, k);
+        }
+      }
+    }
   }
   settled = false;
   unsettled.clear();
