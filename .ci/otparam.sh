@@ -22,12 +22,14 @@ python=/usr/bin/python3
 
 # ParaView 5.11 with its own VTK 9.2 (module, Python wrapping and plugin are all built against
 # it), the third-party headers its CMake package looks for with the components OTParam uses,
-# Qt's help tools for the plugin documentation, the algorithms' libraries, test tools.
+# Qt's help tools for the plugin documentation, the algorithms' libraries, Open MPI's mpiexec
+# and mpi4py for cohorts on pvbatch ranks, test tools.
 packages=(
   cmake ninja-build g++ ccache
   paraview paraview-dev python3-paraview python3-dev python3-numpy
   qtbase5-dev qttools5-dev qttools5-dev-tools libqt5svg5-dev qtxmlpatterns5-dev-tools
   libqt5x11extras5-dev
+  openmpi-bin python3-mpi4py
   libopenmpi-dev libdouble-conversion-dev liblz4-dev liblzma-dev libexpat1-dev zlib1g-dev
   libcgal-dev libgmp-dev libmpfr-dev libboost-dev libeigen3-dev libsuitesparse-dev
   libopenblas0-pthread

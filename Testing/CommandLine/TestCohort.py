@@ -1,0 +1,176 @@
+"""The command line tool on a small cohort: 6 shared meshes (disks, a closed surface) and 2
+broken ones written here (a non-manifold fin, a closed torus of genus 1).
+
+- `mpiexec -n 2 otparam DIR -o OUT`: 6 rows mapped with their .vtp, 2 failed rows with their
+  messages, both ranks used, exit status 1.
+- The same with --resume: nothing is mapped again (every row resumed, no output rewritten).
+- One process (no mpiexec): the same .vtp outputs, array for array (timings aside).
+- --obj: the OBJ read back has the .vtp's points, triangles and texture coordinates.
+- Usage errors: exit status 2 with a message.
+
+Usage: TestCohort.py <otparam launcher> <mpiexec> <shared meshes dir> <work dir>
+"""
+
+import csv
+import os
+import shutil
+import subprocess
+import sys
+
+from otparam import vtkOTParamMeshReader
+from vtkmodules.util.numpy_support import vtk_to_numpy
+from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
+import numpy
+
+otparam, mpiexec, meshes, work = sys.argv[1:5]
+SHARED = ("hand_stein_810.obj", "hemisphere_2k.obj", "face_dense_gpp_5k.obj",
+          "spot_closed_3k.obj", "chinese_lion_17k.off", "face_choi_bff_17k.obj")
+failures = []
+
+
+def check(condition, message):
+    print(("ok   " if condition else "FAIL ") + message, flush=True)
+    if not condition:
+        failures.append(message)
+
+
+def write_broken(cohort):
+    with open(os.path.join(cohort, "fin_nonmanifold.off"), "w") as f:
+        f.write("OFF\n5 3 0\n0 0 0\n1 0 0\n0 1 0\n0 -1 0\n0 0 1\n3 0 1 2\n3 1 0 3\n3 0 1 4\n")
+    import math
+    n, m = 24, 12
+    points = [((1 + 0.4 * math.cos(2 * math.pi * j / m)) * math.cos(2 * math.pi * i / n),
+               (1 + 0.4 * math.cos(2 * math.pi * j / m)) * math.sin(2 * math.pi * i / n),
+               0.4 * math.sin(2 * math.pi * j / m)) for i in range(n) for j in range(m)]
+    triangles = []
+    for i in range(n):
+        for j in range(m):
+            a, b = i * m + j, ((i + 1) % n) * m + j
+            c, d = ((i + 1) % n) * m + (j + 1) % m, i * m + (j + 1) % m
+            triangles += [(a, b, c), (a, c, d)]
+    with open(os.path.join(cohort, "torus_genus1.off"), "w") as f:
+        f.write(f"OFF\n{len(points)} {len(triangles)} 0\n")
+        f.writelines("%r %r %r\n" % p for p in points)
+        f.writelines("3 %d %d %d\n" % t for t in triangles)
+
+
+def run(arguments, env=None):
+    result = subprocess.run(arguments, capture_output=True, text=True,
+                            env=dict(os.environ, **(env or {})))
+    print(f"$ {' '.join(arguments)}  -> exit {result.returncode}\n{result.stdout}", flush=True)
+    return result
+
+
+def summary(out):
+    with open(os.path.join(out, "summary.csv"), newline="") as f:
+        return {row["name"]: row for row in csv.DictReader(f)}
+
+
+def read_vtp(path):
+    reader = vtkXMLPolyDataReader()
+    reader.SetFileName(path)
+    reader.Update()
+    return reader.GetOutput()
+
+
+def differences(a, b):
+    """Names of what differs between two outputs (points, arrays; Seconds* aside)."""
+    different = []
+    if not numpy.array_equal(vtk_to_numpy(a.GetPoints().GetData()),
+                             vtk_to_numpy(b.GetPoints().GetData())):
+        different.append("points")
+    for attributes in ("GetPointData", "GetCellData", "GetFieldData"):
+        left, right = getattr(a, attributes)(), getattr(b, attributes)()
+        for i in range(left.GetNumberOfArrays()):
+            array = left.GetAbstractArray(i)
+            other = right.GetAbstractArray(array.GetName())
+            if array.GetName().startswith("Seconds") or not array.IsA("vtkDataArray"):
+                continue
+            if other is None or not numpy.array_equal(vtk_to_numpy(array), vtk_to_numpy(other),
+                                                      equal_nan=True):
+                different.append(array.GetName())
+    return different
+
+
+shutil.rmtree(work, ignore_errors=True)
+cohort = os.path.join(work, "cohort")
+os.makedirs(cohort)
+for mesh in SHARED:
+    os.symlink(os.path.join(meshes, mesh), os.path.join(cohort, mesh))
+write_broken(cohort)
+mapped = [os.path.splitext(m)[0] for m in SHARED]
+common = ["--samples", "2000"]
+
+# ---- Two MPI ranks.
+out_mpi = os.path.join(work, "out-mpi")
+result = run([mpiexec, "--allow-run-as-root", "--oversubscribe", "-n", "2", otparam, cohort,
+              "-o", out_mpi, "--obj"] + common)
+check(result.returncode == 1, f"mpiexec -n 2: exit status 1 when some surfaces fail "
+                              f"({result.returncode})")
+rows = summary(out_mpi)
+check(len(rows) == 8, f"8 rows in summary.csv ({len(rows)})")
+for name in mapped:
+    row = rows.get(name, {})
+    check(row.get("status") in ("ok", "warning") and row.get("converged") == "1"
+          and row.get("flips") == "0" and os.path.isfile(os.path.join(out_mpi, name + ".vtp")),
+          f"{name}: mapped, converged, no flip, {name}.vtp written "
+          f"({row.get('status')}, area {row.get('area')})")
+for name, words in (("fin_nonmanifold", "non-manifold"), ("torus_genus1", "genus 1")):
+    row = rows.get(name, {})
+    check(row.get("status") == "failed" and words in row.get("message", "")
+          and not os.path.exists(os.path.join(out_mpi, name + ".vtp")),
+          f"{name}: a failed row saying '{words}' ({row.get('message')})")
+ranks_used = {row["rank"] for row in rows.values()}
+check(ranks_used == {"0", "1"}, f"both ranks mapped surfaces ({sorted(ranks_used)})")
+check(rows.get("spot_closed_3k", {}).get("domain") == "sphere"
+      and rows.get("face_choi_bff_17k", {}).get("domain") == "disk",
+      "the closed surface went to the sphere, the others to the disk")
+
+# ---- --resume: nothing new.
+stamps = {f: os.stat(os.path.join(out_mpi, f)).st_mtime_ns for f in os.listdir(out_mpi)
+          if f.endswith(".vtp")}
+result = run([mpiexec, "--allow-run-as-root", "--oversubscribe", "-n", "2", otparam, cohort,
+              "-o", out_mpi, "--resume"] + common)
+again = summary(out_mpi)
+check(result.returncode == 1 and len(again) == 8
+      and all(row["message"].startswith("resumed") for row in again.values()),
+      "--resume: every row resumed, the failures kept, exit status 1")
+check(all(os.stat(os.path.join(out_mpi, f)).st_mtime_ns == t for f, t in stamps.items()),
+      "--resume: no output rewritten")
+
+# ---- One process: the same outputs.
+out_one = os.path.join(work, "out-one")
+result = run([otparam, cohort, "-o", out_one, "-q"] + common)
+check(result.returncode == 1 and len(summary(out_one)) == 8, "one process: 8 rows, exit 1")
+for name in mapped:
+    a, b = os.path.join(out_mpi, name + ".vtp"), os.path.join(out_one, name + ".vtp")
+    different = differences(read_vtp(a), read_vtp(b)) if os.path.isfile(b) else ["missing"]
+    check(not different, f"{name}.vtp: one process and 2 MPI ranks agree bit for bit "
+                         f"({different or 'identical'})")
+
+# ---- --obj: texture coordinates for Blender/MeshLab, read back.
+for name in ("face_dense_gpp_5k", "spot_closed_3k"):
+    vtp = read_vtp(os.path.join(out_mpi, name + ".vtp"))
+    reader = vtkOTParamMeshReader()
+    reader.SetFileName(os.path.join(out_mpi, name + ".obj"))
+    reader.Update()
+    obj = reader.GetOutput()
+    tcoords = obj.GetPointData().GetTCoords()
+    same = (obj.GetNumberOfPoints() == vtp.GetNumberOfPoints()
+            and obj.GetNumberOfCells() == vtp.GetNumberOfCells() and tcoords is not None
+            and numpy.allclose(vtk_to_numpy(tcoords),
+                               vtk_to_numpy(vtp.GetPointData().GetTCoords()), rtol=0, atol=1e-12)
+            and numpy.allclose(vtk_to_numpy(obj.GetPoints().GetData()),
+                               vtk_to_numpy(vtp.GetPoints().GetData()), rtol=1e-12, atol=0))
+    check(same, f"{name}.obj: the points, triangles and texture coordinates of {name}.vtp")
+
+# ---- Usage errors.
+result = run([otparam, os.path.join(work, "no-such-dir"), "-o", os.path.join(work, "x")])
+check(result.returncode == 2 and "no surface files" in result.stderr,
+      f"no input surface: exit 2 with a message ({result.stderr.strip()})")
+result = run([otparam, cohort, "-o", os.path.join(work, "x"), "--samples", "-5"])
+check(result.returncode == 2 and "--samples" in result.stderr,
+      f"absurd --samples: exit 2 naming the option ({result.stderr.strip()[-80:]})")
+
+print(f"{len(failures)} check(s) failed" if failures else "all checks passed")
+sys.exit(1 if failures else 0)
