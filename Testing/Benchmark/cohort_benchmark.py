@@ -7,8 +7,10 @@ Default cohort: the 10 shared disk meshes (../shared/data/meshes, 810 to 56k ver
 configuration runs --repeat times, interleaved (the machine drifts); the table gives min,
 median and max wall seconds, the speed-up of the medians over one process, and per surface
 the median seconds and peak memory of one process (from summary.csv and /usr/bin/time).
-Configurations: one process (OpenMP threads = cores), one process with 1 thread, and
-`mpiexec -n 2` (1 thread per rank on 2 cores: the launcher divides the cores among ranks).
+Configurations: `mpiexec -n 1` and `mpiexec -n 2` (pvbatch ranks; the launcher divides the
+cores among the ranks: 2 OpenMP threads for one rank, 1 each for two on this 2-core machine),
+and one process without mpiexec (plain Python), with OpenMP threads = cores and with 1 thread.
+Speed-ups are against `mpiexec -n 1`.
 """
 
 import argparse
@@ -43,11 +45,12 @@ def main():
     os.makedirs(cohort)
     for mesh in args.meshes:
         os.symlink(os.path.abspath(os.path.join(args.mesh_dir, mesh)), os.path.join(cohort, mesh))
-    mpi = [args.mpiexec, "--allow-run-as-root", "--oversubscribe", "-n", "2"]
+    mpi = [args.mpiexec, "--allow-run-as-root", "--oversubscribe", "-n"]
     configurations = [
-        ("1 process, OpenMP threads = cores", [], {}),
-        ("1 process, 1 thread", [], {"OMP_NUM_THREADS": "1"}),
-        ("mpiexec -n 2 (1 thread per rank)", mpi, {}),
+        ("mpiexec -n 1 (OpenMP threads = cores)", mpi + ["1"], {}),
+        ("mpiexec -n 2 (1 thread per rank)", mpi + ["2"], {}),
+        ("no mpiexec, OpenMP threads = cores", [], {}),
+        ("no mpiexec, 1 thread", [], {"OMP_NUM_THREADS": "1"}),
     ]
     seconds = {label: [] for label, _, _ in configurations}
     per_surface = {}
@@ -62,7 +65,7 @@ def main():
             if result.returncode != 0:
                 print(f"{label}: exit {result.returncode}\n{result.stdout}{result.stderr}")
                 return 1
-            if prefix == [] and not env:
+            if label.startswith("no mpiexec, OpenMP"):
                 with open(os.path.join(out, "summary.csv"), newline="") as f:
                     for row in csv.DictReader(f):
                         per_surface.setdefault(row["name"], (row, []))[1].append(
