@@ -285,7 +285,7 @@ def map_surface(surface, arguments, report):
     param.Update()
     elapsed = time.monotonic() - start
     if arguments.timeout > 0 and elapsed > arguments.timeout and param.GetAbortExecute():
-        raise SurfaceError(f"timed out after {elapsed:.0f} s in stage '{stage[0]}' "
+        raise SurfaceError(f"timed out after {elapsed:.1f} s in stage '{stage[0]}' "
                            f"(--timeout {arguments.timeout:g}; raise it, or lower --samples)")
     if messages.errors:
         raise SurfaceError(messages.errors[0])

@@ -6,6 +6,7 @@ broken ones written here (a non-manifold fin, a closed torus of genus 1).
 - The same with --resume: nothing is mapped again (every row resumed, no output rewritten).
 - One process (no mpiexec): the same .vtp outputs, array for array (timings aside).
 - --obj: the OBJ read back has the .vtp's points, triangles and texture coordinates.
+- --timeout: a surface past it is a failed row naming the stage.
 - Usage errors: exit status 2 with a message.
 
 Usage: TestCohort.py <otparam launcher> <mpiexec> <shared meshes dir> <work dir>
@@ -163,6 +164,15 @@ for name in ("face_dense_gpp_5k", "spot_closed_3k"):
             and numpy.allclose(vtk_to_numpy(obj.GetPoints().GetData()),
                                vtk_to_numpy(vtp.GetPoints().GetData()), rtol=1e-12, atol=0))
     check(same, f"{name}.obj: the points, triangles and texture coordinates of {name}.vtp")
+
+# ---- A timeout is a failed row naming the stage; the filter is aborted, not the run.
+out_timeout = os.path.join(work, "out-timeout")
+result = run([otparam, os.path.join(cohort, "face_choi_bff_17k.obj"),
+              os.path.join(cohort, "hemisphere_2k.obj"), "-o", out_timeout, "--timeout", "0.01"])
+late = summary(out_timeout).get("face_choi_bff_17k", {})
+check(result.returncode == 1 and late.get("status") == "failed"
+      and "timed out" in late.get("message", "") and "stage" in late.get("message", ""),
+      f"--timeout: a failed row saying where it stopped ({late.get('message')})")
 
 # ---- Usage errors.
 result = run([otparam, os.path.join(work, "no-such-dir"), "-o", os.path.join(work, "x")])
