@@ -221,7 +221,11 @@ def read_surface(path):
     reader.SetFileName(path)
     reader.Update()
     if messages.errors:
-        raise SurfaceError(f"reading {os.path.basename(path)}: {messages.errors[0]}")
+        hint = ""
+        if extension == ".vtp" and "parsing" in messages.errors[0]:
+            hint = (" (Debian 12's VTK cannot read .vtp files with appended data, VTK's default: "
+                    "write them with inline data, e.g. SetDataModeToBinary())")
+        raise SurfaceError(f"reading {os.path.basename(path)}: {messages.errors[0]}{hint}")
     data = reader.GetOutputDataObject(0)
     if data is None or not data.IsA("vtkDataSet") or data.GetNumberOfCells() == 0:
         raise SurfaceError(f"reading {os.path.basename(path)}: no surface cells in the file")

@@ -6,6 +6,7 @@ broken ones written here (a non-manifold fin, a closed torus of genus 1).
 - The same with --resume: nothing is mapped again (every row resumed, no output rewritten).
 - One process (no mpiexec): the same .vtp outputs, array for array (timings aside).
 - --obj: the OBJ read back has the .vtp's points, triangles and texture coordinates.
+- PLY, STL, legacy VTK and VTP inputs, named by a glob.
 - --timeout: a surface past it is a failed row naming the stage.
 - Usage errors: exit status 2 with a message.
 
@@ -164,6 +165,32 @@ for name in ("face_dense_gpp_5k", "spot_closed_3k"):
             and numpy.allclose(vtk_to_numpy(obj.GetPoints().GetData()),
                                vtk_to_numpy(vtp.GetPoints().GetData()), rtol=1e-12, atol=0))
     check(same, f"{name}.obj: the points, triangles and texture coordinates of {name}.vtp")
+
+# ---- Other formats: the hemisphere written as PLY, STL (a soup: merged on reading), legacy VTK
+# and VTP maps as the OBJ does.
+from vtkmodules.vtkIOGeometry import vtkSTLWriter
+from vtkmodules.vtkIOLegacy import vtkPolyDataWriter
+from vtkmodules.vtkIOPLY import vtkPLYWriter
+from vtkmodules.vtkIOXML import vtkXMLPolyDataWriter
+formats = os.path.join(work, "formats")
+os.makedirs(formats)
+hemisphere = vtkOTParamMeshReader()
+hemisphere.SetFileName(os.path.join(meshes, "hemisphere_2k.obj"))
+for writer, extension in ((vtkPLYWriter(), "ply"), (vtkSTLWriter(), "stl"),
+                          (vtkPolyDataWriter(), "vtk"), (vtkXMLPolyDataWriter(), "vtp")):
+    writer.SetInputConnection(hemisphere.GetOutputPort())
+    writer.SetFileName(os.path.join(formats, f"hemisphere.{extension}"))
+    if extension == "vtp":
+        writer.SetDataModeToBinary()  # inline: Debian 12's VTK cannot read appended data
+    writer.Write()
+out_formats = os.path.join(work, "out-formats")
+result = run([otparam, os.path.join(formats, "*.*"), "-o", out_formats, "-q"] + common)
+by_name = summary(out_formats)
+check(result.returncode == 0 and sorted(by_name) == ["hemisphere_ply", "hemisphere_stl",
+                                                      "hemisphere_vtk", "hemisphere_vtp"]
+      and all(row["status"] == "ok" and row["vertices"] == "2051" for row in by_name.values()),
+      "PLY, STL, VTK and VTP (a glob; same stem: <stem>_<extension>) map with 2051 vertices "
+      f"each ({ {name: (row['status'], row['vertices']) for name, row in by_name.items()} })")
 
 # ---- A timeout is a failed row naming the stage; the filter is aborted, not the run.
 out_timeout = os.path.join(work, "out-timeout")
