@@ -641,7 +641,9 @@ std::string ObjParser::resolveVertex(long long index, int& point)
   }
   if (index < 0)
   {
-    if (-index > count)
+    // Not -index > count: -index overflows for the smallest long long (found by the fuzzer:
+    // "f -9223372036854775808 ..." then named vertex count + index, truncated to an int).
+    if (index < -count)
     {
       return "face refers to vertex " + std::to_string(index) + " but only " +
         std::to_string(count) + " vertices precede it";

@@ -444,6 +444,9 @@ TEST(MeshFile, BadFaces)
   expectError(readObjText(obj + "f 1 2 3/0\n", data), data, "line 4: face corner '3/0'");
   expectError(readObjText(obj + "f 1 2 3/1/x\n", data), data, "line 4: face corner '3/1/x'");
   expectError(readObjText(obj + "f 1 2 3/1/1/1\n", data), data, "line 4");
+  // Found by the fuzzer: -index overflowed, and the vertex became count + index as an int.
+  expectError(readObjText(obj + "f 1 2 -9223372036854775808\n", data), data,
+    "line 4: face refers to vertex -9223372036854775808 but only 3 vertices precede it");
   // The line of a continued statement is where it starts; lines stay physical lines.
   expectError(readObjText(obj + "f 1 \\\r\n2 \\\r\n3\r\nf 1 1 2\r\n", data), data, "line 7:");
 }
