@@ -67,7 +67,7 @@
  * not made of triangles, with overlapping triangles or boundary loops that touch; a sphere
  * domain that is not closed, not counter-clockwise seen from outside or has a triangle of
  * density 0; NumberOfSamples < 3 or above
- * MaximumNumberOfSamples; MinimumAngle outside (0, 35]; SamplingMode or SizeRule out of range)
+ * MaximumNumberOfSamples; MinimumAngle outside (0, 30]; SamplingMode or SizeRule out of range)
  * is reported with vtkErrorMacro naming the problem and the offending ids; RequestData then
  * returns 0 and the output is empty. The input is never modified. Progress is reported and
  * AbortExecute honoured (an aborted run leaves the output empty, with a warning).
@@ -117,7 +117,7 @@ public:
   ///@{
   /**
    * Smallest angle (degrees) the refinement aims at: triangles with a smaller angle get their
-   * circumcentre inserted. Must be in (0, 35]. Default 30. The angle actually reached is
+   * circumcentre inserted. Must be in (0, 30]. Default 30. The angle actually reached is
    * reported as the field data `MinimumAngle`.
    */
   vtkSetMacro(MinimumAngle, double);

@@ -372,8 +372,8 @@ void mutateSampler(SamplerOptions& o, Rng& rng)
       o.numberOfSamples = counts[pick(rng, 8)];
       break;
     case 1:
-      o.minimumAngleDegrees = std::vector<double>{ -1.0, 0.0, 1.0, 33.0, 60.0, 90.0,
-        std::numeric_limits<double>::quiet_NaN() }[pick(rng, 7)];
+      o.minimumAngleDegrees = std::vector<double>{ -1.0, 0.0, 1.0, 29.9, 30.0, 30.1, 33.0, 60.0,
+        90.0, std::numeric_limits<double>::quiet_NaN() }[pick(rng, 10)];
       break;
     case 2:
       o.mode = static_cast<SamplingMode>(pick(rng, 4));
