@@ -24,6 +24,7 @@
 #include <cmath>
 #include <condition_variable>
 #include <csignal>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -56,8 +57,18 @@ void reportCrash(int signal)
   {
     (void)!write(2, line, static_cast<size_t>(n));
   }
-  std::signal(signal, SIG_DFL);
-  std::raise(signal);
+  if (signal != 0)
+  {
+    std::signal(signal, SIG_DFL);
+    std::raise(signal);
+  }
+}
+
+// AddressSanitizer ends the process its own way: it calls this back first (when linked in).
+extern "C" __attribute__((weak)) void __sanitizer_set_death_callback(void (*)(void));
+void reportSanitizerDeath()
+{
+  reportCrash(0);
 }
 
 // Aborts the process when a case runs longer than the limit (a hang is a finding too).
@@ -126,6 +137,25 @@ size_t pick(Rng& rng, size_t n)
   return n == 0 ? 0 : static_cast<size_t>(rng() % n);
 }
 
+// a + b wrapping around, as the hostile indices (near +-2^63) must not overflow in the driver.
+std::int64_t wrapAdd(std::int64_t a, std::int64_t b)
+{
+  return static_cast<std::int64_t>(static_cast<std::uint64_t>(a) + static_cast<std::uint64_t>(b));
+}
+
+// True when the triangle's ids name points (an earlier mutation may have broken them).
+bool inRange(const std::array<std::int64_t, 3>& triangle, size_t points)
+{
+  for (std::int64_t id : triangle)
+  {
+    if (id < 0 || static_cast<std::uint64_t>(id) >= points)
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
 // ---- Meshes: mutations of coordinates and of connectivity.
 void mutateMesh(TriangleSoup& soup, Rng& rng)
 {
@@ -159,8 +189,11 @@ void mutateMesh(TriangleSoup& soup, Rng& rng)
       if (!t.empty())
       {
         const auto tri = t[pick(rng, t.size())];
-        p[tri[1]] = p[tri[0]];
-        p[tri[2]] = p[tri[0]];
+        if (inRange(tri, p.size()))
+        {
+          p[tri[1]] = p[tri[0]];
+          p[tri[2]] = p[tri[0]];
+        }
       }
       break;
     case 4: // every point on a line or a plane
@@ -208,8 +241,11 @@ void mutateMesh(TriangleSoup& soup, Rng& rng)
       if (!t.empty())
       {
         const auto tri = t[pick(rng, t.size())];
-        p.push_back(p[tri[0]] + Vec3{ 0.0, 0.0, 0.3 });
-        t.push_back({ tri[0], tri[1], static_cast<std::int64_t>(p.size()) - 1 });
+        if (inRange(tri, p.size()))
+        {
+          p.push_back(p[tri[0]] + Vec3{ 0.0, 0.0, 0.3 });
+          t.push_back({ tri[0], tri[1], static_cast<std::int64_t>(p.size()) - 1 });
+        }
       }
       break;
     case 10: // triangles removed: holes, several components, isolated points
@@ -247,7 +283,8 @@ void mutateMesh(TriangleSoup& soup, Rng& rng)
       }
       for (size_t k = 0; k < triangles; ++k)
       {
-        t.push_back({ t[k][0] + offset, t[k][1] + offset, t[k][2] + offset });
+        t.push_back(
+          { wrapAdd(t[k][0], offset), wrapAdd(t[k][1], offset), wrapAdd(t[k][2], offset) });
       }
       break;
     }
@@ -460,8 +497,9 @@ std::string objText(const TriangleSoup& soup)
   }
   for (const auto& t : soup.triangles)
   {
-    s << "f " << t[0] + 1 << '/' << t[0] + 1 << ' ' << t[1] + 1 << "//" << t[1] + 1 << ' '
-      << -static_cast<long long>(soup.points.size()) + t[2] << '\n';
+    s << "f " << wrapAdd(t[0], 1) << '/' << wrapAdd(t[0], 1) << ' ' << wrapAdd(t[1], 1) << "//"
+      << wrapAdd(t[1], 1) << ' ' << wrapAdd(t[2], -static_cast<std::int64_t>(soup.points.size()))
+      << '\n';
   }
   return s.str();
 }
@@ -607,6 +645,10 @@ CaseResult fuzzConformalDisk(Rng& rng)
   for (int k = static_cast<int>(pick(rng, 3)); k > 0; --k) // 0 to 2 mutations
   {
     mutateMesh(soup, rng);
+  }
+  if (const char* dump = std::getenv("OTPARAM_FUZZ_DUMP"))
+  {
+    std::ofstream(dump) << offText(soup);
   }
   ConformalStageOptions options;
   options.fillHoles = rng() % 4 != 0;
@@ -947,6 +989,10 @@ int main(int argc, char** argv)
   for (int signal : { SIGSEGV, SIGABRT, SIGFPE, SIGBUS, SIGILL })
   {
     std::signal(signal, reportCrash);
+  }
+  if (__sanitizer_set_death_callback)
+  {
+    __sanitizer_set_death_callback(reportSanitizerDeath);
   }
   if (args.list)
   {

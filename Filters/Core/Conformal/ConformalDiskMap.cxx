@@ -445,6 +445,7 @@ std::complex<double> moebius(std::complex<double> z, std::complex<double> a)
 // on a hand, leaving the palm squeezed against the circle; the area barycentre balances the
 // area distortion that the sampler and the OT solver face. Fixed-point iteration of the
 // Douady-Earle kind: compose with the Moebius map of the current barycentre until it is 0.
+// -1 when no interior vertex is at a finite distance from it (weights or images not finite).
 int areaBarycentreVertex(const SurfaceMesh& mesh, const ClippedMesh& clipped,
   const DiskFlattening& disk, const Eigen::MatrixXd& X)
 {
@@ -733,9 +734,19 @@ ConformalDiskMapResult computeWithLaplacian(const SurfaceMesh& mesh,
   {
     return result;
   }
-  result.centerVertex = options.centerVertex >= 0
-    ? options.centerVertex
-    : disk.Vertices[areaBarycentreVertex(mesh, clipped, disk, X)];
+  const int barycentre =
+    options.centerVertex >= 0 ? -1 : areaBarycentreVertex(mesh, clipped, disk, X);
+  if (options.centerVertex < 0 && barycentre < 0)
+  {
+    // Found by the fuzzer: a disk squashed onto a line passes the mesh checks, but its
+    // flattening (and so every distance to the area barycentre) is not finite.
+    result.status.error = "the flattened surface is not finite: the surface is too thin, too "
+                          "large or too small for double precision (a collapsed dimension? "
+                          "rescale the coordinates to a size near 1)";
+    return result;
+  }
+  result.centerVertex =
+    options.centerVertex >= 0 ? options.centerVertex : disk.Vertices[barycentre];
   const int center = disk.Local[result.centerVertex];
   centreByMoebius(disk, center, theta, X);
   result.secondsIterations = secondsSince(t0);

@@ -381,3 +381,37 @@ TEST(DiskTopology, CompactionDropsUnreferencedPoints)
   EXPECT_NE(compactMesh(points, { { 0, 2, 7 } }, c).find("outside"), std::string::npos);
   EXPECT_NE(compactMesh(points, { { 0, 2, 2 } }, c).find("twice"), std::string::npos);
 }
+
+// Found by the fuzzer: a bumped disk squashed onto a line (y = 0, x within 1e-10) passes the
+// mesh checks, but its flattening is not finite, so the automatic centre (the area barycentre)
+// had no candidate and index -1 was read. Now: an error that says what is wrong.
+TEST(ConformalDiskMap, SurfaceSquashedOntoALine)
+{
+  const PlanarMesh disk = makePlanarDisk(6);
+  SurfaceMesh mesh;
+  for (size_t v = 0; v < disk.points.size(); ++v)
+  {
+    const Vec2 p = disk.points[v];
+    const double jitter = 1e-10 * std::sin(12.9898 * static_cast<double>(v) + 78.233);
+    mesh.points.push_back({ jitter, 0.0, 0.4 * std::exp(-4.0 * dot(p, p)) + 0.05 * p.x });
+  }
+  mesh.triangles = disk.triangles;
+  std::vector<int> loop;
+  const std::string topology = checkDiskTopology(mesh, loop);
+  if (!topology.empty())
+  {
+    GTEST_SKIP() << "refused by the mesh checks already: " << topology;
+  }
+  const ConformalDiskMapResult r = computeConformalDiskMap(mesh, loop);
+  if (r.status.error.empty())
+  {
+    for (Vec2 q : r.uv)
+    {
+      ASSERT_TRUE(std::isfinite(q.x) && std::isfinite(q.y));
+    }
+  }
+  else
+  {
+    EXPECT_NE(r.status.error.find("double precision"), std::string::npos) << r.status.error;
+  }
+}
