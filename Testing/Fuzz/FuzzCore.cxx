@@ -600,6 +600,18 @@ using CaseResult = std::string;
 
 // Set by a case whose entry point accepted the input (returned a result it calls good).
 bool Accepted = false;
+// The message of a case refused or failed cleanly (printed with --verbose, to read them).
+std::string Refusal;
+
+CaseResult refused(const std::string& message)
+{
+  Refusal = message;
+  return "";
+}
+CaseResult refused(const Status& status)
+{
+  return refused(status.aborted ? "aborted" : status.error);
+}
 
 // ---- The entry points.
 CaseResult fuzzReader(Rng& rng, bool obj)
@@ -623,7 +635,7 @@ CaseResult fuzzReader(Rng& rng, bool obj)
   const std::string error = obj ? readOBJ(in, data) : readOFF(in, data);
   if (!error.empty())
   {
-    return "";
+    return refused(error);
   }
   Accepted = true;
   for (const Triangle& t : data.triangles)
@@ -663,7 +675,7 @@ CaseResult fuzzConformalDisk(Rng& rng)
   const ConformalStage stage = runConformalStage(soup, options);
   if (!stage.status.error.empty() || stage.status.aborted)
   {
-    return "";
+    return refused(stage.status);
   }
   Accepted = true;
   if (stage.map.uv.size() != stage.surface.mesh.points.size() || !finite(stage.map.uv))
@@ -685,7 +697,7 @@ CaseResult fuzzConformalSphere(Rng& rng)
   const SphereConformalStage stage = runSphereConformalStage(soup, ConformalSphereMapOptions());
   if (!stage.status.error.empty() || stage.status.aborted)
   {
-    return "";
+    return refused(stage.status);
   }
   Accepted = true;
   if (stage.map.sphere.size() != stage.surface.mesh.points.size() || !finite(stage.map.sphere))
@@ -741,7 +753,7 @@ CaseResult fuzzPlanarSampler(Rng& rng)
     perPoint ? values : std::vector<double>(), perPoint ? std::vector<double>() : values, options);
   if (!stage.status.error.empty() || stage.status.aborted)
   {
-    return "";
+    return refused(stage.status);
   }
   Accepted = true;
   return finite(stage.result.samples) && finite(stage.result.mass) &&
@@ -784,7 +796,7 @@ CaseResult fuzzSphericalSampler(Rng& rng)
     runSphereSamplingStage(points, sphere.triangles, density, options);
   if (!stage.status.error.empty() || stage.status.aborted)
   {
-    return "";
+    return refused(stage.status);
   }
   Accepted = true;
   return finite(stage.result.samples) && finite(stage.result.mass) ? ""
@@ -826,7 +838,7 @@ CaseResult fuzzTransport(Rng& rng, std::vector<Point> diracs, int massDecades,
   const auto stage = solve(diracs, masses, options);
   if (!stage.status.error.empty() || stage.status.aborted)
   {
-    return "";
+    return refused(stage.status);
   }
   Accepted = true;
   const auto& r = stage.result;
@@ -863,7 +875,7 @@ CaseResult checkMap(const Result& run, const std::vector<Vec2>* uv, const std::v
 {
   if (!run.status.error.empty() || run.status.aborted)
   {
-    return "";
+    return refused(run.status);
   }
   Accepted = true;
   if ((uv && !finite(*uv)) || (sphere && !finite(*sphere)))
@@ -935,6 +947,7 @@ struct Arguments
   long long only = -1;
   double caseSeconds = 60.0;
   bool list = false;
+  bool verbose = false;
 };
 
 bool parse(int argc, char** argv, Arguments& a)
@@ -946,6 +959,10 @@ bool parse(int argc, char** argv, Arguments& a)
     if (key == "--list")
     {
       a.list = true;
+    }
+    else if (key == "--verbose")
+    {
+      a.verbose = true;
     }
     else if (key == "--cases" && hasValue)
     {
@@ -982,7 +999,7 @@ int main(int argc, char** argv)
   if (!parse(argc, argv, args))
   {
     std::fprintf(stderr,
-      "usage: %s [--cases N] [--seed S] [--entry NAME] [--case K] [--case-seconds T] [--list]\n",
+      "usage: %s [--cases N] [--seed S] [--entry NAME] [--case K] [--case-seconds T] [--list] [--verbose]\n",
       argv[0]);
     return 2;
   }
@@ -1012,7 +1029,7 @@ int main(int argc, char** argv)
     {
       continue;
     }
-    long long accepted = 0, refused = 0, found = 0;
+    long long accepted = 0, declined = 0, found = 0;
     double slowest = 0.0;
     const auto start = std::chrono::steady_clock::now();
     const long long first = args.only >= 0 ? args.only : 0;
@@ -1028,6 +1045,7 @@ int main(int argc, char** argv)
       Rng rng(seeds);
       watchdog.startCase();
       Accepted = false;
+      Refusal = "(checks in the driver)";
       const auto caseStart = std::chrono::steady_clock::now();
       const CaseResult result = entry.run(rng);
       const double caseSeconds =
@@ -1042,12 +1060,17 @@ int main(int argc, char** argv)
         ++found;
         std::fprintf(stderr, "FINDING (%s): %s\n", CurrentCase, result.c_str());
       }
-      ++(Accepted ? accepted : refused);
+      ++(Accepted ? accepted : declined);
+      if (args.verbose)
+      {
+        std::printf("%s: %.2f s, %s\n", CurrentCase, caseSeconds,
+          Accepted ? "accepted" : ("refused: " + Refusal).c_str());
+      }
     }
     const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::printf("| %s | %lld | %lld | %lld | %lld | %.1f | %.2f (case %lld) |\n", entry.name,
-      last - first, refused, accepted, found, seconds, slowest, slowestCase);
+      last - first, declined, accepted, found, seconds, slowest, slowestCase);
     std::fflush(stdout);
     findings += static_cast<int>(found);
   }

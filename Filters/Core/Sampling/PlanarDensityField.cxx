@@ -1,6 +1,7 @@
 #include "Sampling/PlanarDensityField.h"
 
 #include "Common/IdList.h"
+#include "Sampling/Sampler.h"
 
 #include <CGAL/Convex_hull_traits_adapter_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -99,8 +100,8 @@ std::unique_ptr<DensityField> DensityField::create(const std::vector<Vec2>& poin
   std::unique_ptr<DensityField> field(new DensityField());
   field->Points = points;
   field->Triangles = triangles;
-  field->PerPoint = perPoint;
-  field->PerTriangle = perTriangle;
+  field->PerPoint = relativeDensity(perPoint);
+  field->PerTriangle = relativeDensity(perTriangle);
   error = field->orientAndIntegrate();
   if (error.empty())
   {
@@ -127,6 +128,7 @@ std::unique_ptr<DensityField> DensityField::create(const std::vector<Vec2>& poin
 // of the density over all of them.
 std::string DensityField::orientAndIntegrate()
 {
+  constexpr double LargestCoordinate = 1e100;
   const std::vector<Vec2>& points = this->Points;
   std::ostringstream msg;
   for (size_t t = 0; t < this->Triangles.size(); ++t)
@@ -142,6 +144,15 @@ std::string DensityField::orientAndIntegrate()
       if (!std::isfinite(points[v].x) || !std::isfinite(points[v].y))
       {
         msg << "point " << v << " has a NaN or infinite coordinate";
+        return msg.str();
+      }
+      // The refinement squares lengths and multiplies areas: beyond this they overflow (a
+      // point at 1e300 made CGAL's mesher step for minutes).
+      if (std::max(std::abs(points[v].x), std::abs(points[v].y)) > LargestCoordinate)
+      {
+        msg << "point " << v << " has a coordinate of magnitude "
+            << std::max(std::abs(points[v].x), std::abs(points[v].y)) << ", above "
+            << LargestCoordinate << " (lengths are squared and would overflow): rescale the domain";
         return msg.str();
       }
     }

@@ -104,13 +104,14 @@ private:
 class Refinement
 {
 public:
-  Refinement(const DensityField& field, const SamplerOptions& options, double epsilon)
+  Refinement(
+    const DensityField& field, const SamplerOptions& options, double epsilon, long long cap)
     : Field(field)
     , Graded(options.mode == SamplingMode::Adaptive)
     , Rule(options.sizeRule)
     , Epsilon(epsilon)
     , SinMinimumAngle(std::sin(options.minimumAngleDegrees * Pi / 180.0))
-    , Cap(options.maximumNumberOfSamples)
+    , Cap(cap)
   {
   }
 
@@ -475,10 +476,11 @@ void steerOffsets(const DensityField& field, double power, double equalizedPower
   for (long long i = 0; i < static_cast<long long>(n); ++i)
   {
     const double g = power > 0.0 ? field.value(cells.centroid[i]) : 1.0;
-    if (g > 0.0 && cells.mass[i] > 0.0)
+    const double gPower = std::pow(g, power); // 0 where g^power underflows: not steered
+    if (gPower > 0.0 && cells.mass[i] > 0.0)
     {
       equalized[i] = cells.mass[i] * std::pow(g, equalizedPower - power);
-      area[i] = cells.mass[i] / std::pow(g, power);
+      area[i] = cells.mass[i] / gPower;
     }
   }
   // Summed in one order: a reduction's order follows the thread count, and so would the
@@ -589,7 +591,8 @@ Candidate measuredCandidate(const SourceMeasure& source, std::vector<Vec2> point
 Candidate finishCandidate(const DensityField& field, const SamplerOptions& options,
   const SourceMeasure& source, const std::vector<Vec2>& samples, double sourceMass)
 {
-  Refinement repair(field, options, std::numeric_limits<double>::infinity());
+  Refinement repair(field, options, std::numeric_limits<double>::infinity(),
+    refinementLimit(options, static_cast<double>(samples.size())));
   repair.run([](long long) { return true; }, &samples);
   const DT& dt = repair.triangulation();
   std::vector<Vec2> points;
@@ -736,6 +739,10 @@ using Mesher = CGAL::Delaunay_mesher_2<CDT, GradedCriteria>;
 // faces on both sides as inside.
 void markDomain(CDT& cdt)
 {
+  if (cdt.dimension() < 2)
+  {
+    return; // no faces (and no infinite face to flood from)
+  }
   for (auto f = cdt.all_faces_begin(); f != cdt.all_faces_end(); ++f)
   {
     f->set_in_domain(false);
@@ -780,22 +787,40 @@ void markDomain(CDT& cdt)
   }
 }
 
+// CGAL's mesher steps that insert nothing (a rejected point, a face no longer bad) are few
+// between insertions; on a domain reaching 1e300 its constructions overflow and it stepped for
+// minutes without a new vertex.
+constexpr long long StalledMesherSteps = 4096;
+
 // Refines cdt (its boundary already constrained, plus any interior points) until no triangle of
-// the domain is too large or too thin. Returns false when aborted.
+// the domain is too large or too thin, or `cap` vertices (capped), or StalledMesherSteps steps
+// without a new vertex (stalled, capped too). Returns false when aborted.
 bool refineSupport(CDT& cdt, const DensityField& field, const SamplerOptions& options,
-  double epsilon, bool& capped, const std::function<bool(long long)>& keepGoing)
+  double epsilon, long long cap, bool& capped, bool& stalled,
+  const std::function<bool(long long)>& keepGoing)
 {
   markDomain(cdt);
   GradedCriteria::Grading grading{ &field, options.mode == SamplingMode::Adaptive, options.sizeRule,
     epsilon };
   Mesher mesher(cdt, GradedCriteria(std::sin(options.minimumAngleDegrees * Pi / 180.0), grading));
   mesher.init(true);
-  long long steps = 0;
+  long long steps = 0, stepOfLastVertex = 0;
+  auto vertices = cdt.number_of_vertices();
   while (mesher.try_one_step_refine_mesh())
   {
-    if (static_cast<long long>(cdt.number_of_vertices()) >= options.maximumNumberOfSamples)
+    if (static_cast<long long>(cdt.number_of_vertices()) >= cap)
     {
       capped = true;
+      break;
+    }
+    if (cdt.number_of_vertices() > vertices)
+    {
+      vertices = cdt.number_of_vertices();
+      stepOfLastVertex = steps;
+    }
+    else if (steps - stepOfLastVertex > StalledMesherSteps)
+    {
+      capped = stalled = true;
       break;
     }
     if (++steps % 4096 == 0 && !keepGoing(static_cast<long long>(cdt.number_of_vertices())))
@@ -925,8 +950,9 @@ Candidate finishSupportCandidate(const DensityField& field, const SamplerOptions
   {
     cdt.insert(Point(p.x, p.y));
   }
-  bool capped = false;
-  refineSupport(cdt, field, options, std::numeric_limits<double>::infinity(), capped,
+  bool capped = false, stalled = false;
+  refineSupport(cdt, field, options, std::numeric_limits<double>::infinity(),
+    refinementLimit(options, static_cast<double>(cdt.number_of_vertices())), capped, stalled,
     [](long long) { return true; });
   // As after the main refinement: boundary samples the repair added go back on the boundary.
   std::unordered_set<const void*> onBoundary;
@@ -971,9 +997,10 @@ Candidate finishSupportCandidate(const DensityField& field, const SamplerOptions
 // nu-length eps, graded refinement with eps calibrated to the target count, every other
 // boundary sample dropped, Lloyd steps, masses. Fills result like sampleDensity does.
 // Samples along one boundary loop: from corner to corner (from point 0 round the whole loop
-// when it has none), spaced evenly in nu-length along the polyline.
-std::vector<Vec2> sampleLoop(
-  const std::vector<Vec2>& loop, const std::function<double(Vec2)>& grading, double epsilon)
+// when it has none), spaced evenly in nu-length along the polyline. False when that would take
+// more than `most` samples (samples is then incomplete).
+bool sampleLoop(const std::vector<Vec2>& loop, const std::function<double(Vec2)>& grading,
+  double epsilon, long long most, std::vector<Vec2>& samples)
 {
   const size_t n = loop.size();
   const std::vector<char> corner = loopCorners(loop);
@@ -983,7 +1010,7 @@ std::vector<Vec2> sampleLoop(
     ++first;
   }
   first = first == n ? 0 : first;
-  std::vector<Vec2> samples;
+  samples.clear();
   for (size_t piece = first, walked = 0; walked < n;)
   {
     std::vector<Vec2> path{ loop[piece] };
@@ -1003,7 +1030,12 @@ std::vector<Vec2> sampleLoop(
       k = (k + 1) % n;
       ++walked;
     } while (k != first && !corner[k]);
-    const int count = std::max(1, static_cast<int>(std::ceil(cumulative.back() / epsilon)));
+    const double pieceCount = std::max(1.0, std::ceil(cumulative.back() / epsilon));
+    if (!(pieceCount <= static_cast<double>(most) - static_cast<double>(samples.size())))
+    {
+      return false;
+    }
+    const int count = static_cast<int>(pieceCount);
     for (int q = 0; q < count; ++q)
     {
       const double at = cumulative.back() * q / count;
@@ -1017,7 +1049,7 @@ std::vector<Vec2> sampleLoop(
     }
     piece = k;
   }
-  return samples;
+  return true;
 }
 
 // Vertices of the faces inside the domain.
@@ -1086,14 +1118,29 @@ void sampleSupport(
     [&](double epsilon, double runTarget)
     {
       cdt = std::make_unique<CDT>();
+      const long long limit = refinementLimit(options, runTarget);
       std::vector<std::vector<Vec2>> boundary;
+      long long boundarySamples = 0;
       for (const auto& loop : field.boundaryLoops())
       {
-        boundary.push_back(sampleLoop(loop, grading, epsilon));
+        boundary.emplace_back();
+        if (!sampleLoop(loop, grading, epsilon, limit - boundarySamples, boundary.back()))
+        {
+          std::ostringstream text;
+          text << "the domain's boundary alone needs more than " << limit
+               << " samples for a run aiming at " << static_cast<long long>(runTarget)
+               << ": it is too long or too fine for so few samples (a spike, a sliver); check "
+                  "the domain's geometry"
+               << (limit == options.maximumNumberOfSamples ? " or raise MaximumNumberOfSamples"
+                                                           : "");
+          result.status.error = text.str();
+          return -1.0;
+        }
+        boundarySamples += static_cast<long long>(boundary.back().size());
       }
       insertLoops(*cdt, boundary);
-      if (!refineSupport(
-            *cdt, field, options, epsilon, result.capped, progress.ofRun(runTarget, target)))
+      if (!refineSupport(*cdt, field, options, epsilon, limit, result.capped, result.stalled,
+            progress.ofRun(runTarget, target)))
       {
         return -1.0;
       }
@@ -1218,7 +1265,8 @@ void sampleConvex(
     options, integral, 0.08,
     [&](double epsilon, double runTarget)
     {
-      refinement = std::make_unique<Refinement>(field, options, epsilon);
+      refinement =
+        std::make_unique<Refinement>(field, options, epsilon, refinementLimit(options, runTarget));
       if (!refinement->run(progress.ofRun(runTarget, target)))
       {
         return -1.0;

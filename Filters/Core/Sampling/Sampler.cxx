@@ -1,6 +1,8 @@
 #include "Sampling/Sampler.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <sstream>
 
@@ -44,6 +46,34 @@ std::string checkSamplerOptions(const SamplerOptions& options)
 }
 
 //------------------------------------------------------------------------------
+std::vector<double> relativeDensity(const std::vector<double>& values)
+{
+  double largest = 0.0;
+  for (double g : values)
+  {
+    largest = std::max(largest, g);
+  }
+  std::vector<double> relative(values);
+  if (!(largest > 0.0) || !std::isfinite(largest))
+  {
+    return relative; // the fields' checks report it
+  }
+  // By an even power of two: exact, and exact for sqrt(g) too, so a density of moderate range
+  // gives the same samples to the bit as before the scaling.
+  int exponent = 0;
+  std::frexp(largest, &exponent);
+  const int halfExponent = exponent >= 0 ? (exponent + 1) / 2 : -((-exponent) / 2);
+  for (double& g : relative)
+  {
+    if (g > 0.0)
+    {
+      g = std::max(std::ldexp(g, -2 * halfExponent), std::numeric_limits<double>::min());
+    }
+  }
+  return relative;
+}
+
+//------------------------------------------------------------------------------
 double massCoefficientOfVariation(const std::vector<double>& mass)
 {
   if (mass.empty())
@@ -76,6 +106,35 @@ std::string sampleCountWarning(long long reached, long long target, bool capped)
 }
 
 //------------------------------------------------------------------------------
+long long refinementLimit(const SamplerOptions& options, double runTarget)
+{
+  const double limit = 10.0 * runTarget + 2e4;
+  return limit >= static_cast<double>(options.maximumNumberOfSamples)
+    ? options.maximumNumberOfSamples
+    : static_cast<long long>(limit);
+}
+
+//------------------------------------------------------------------------------
+std::string runawayRefinementError(
+  const SamplerOptions& options, double runTarget, long long reached, bool stalled)
+{
+  const long long limit = refinementLimit(options, runTarget);
+  if (!stalled && limit >= options.maximumNumberOfSamples)
+  {
+    return {};
+  }
+  std::ostringstream text;
+  text << "the refinement " << (stalled ? "stalled at " : "placed ")
+       << (stalled ? reached : std::max(reached, limit)) << " samples for a run aiming at "
+       << static_cast<long long>(runTarget) << " and was stopped: the domain has features too fine or too far out to mesh with "
+          "MinimumAngle = "
+       << options.minimumAngleDegrees
+       << " degrees (a spike, a sliver, coordinates near the ends of double precision); check "
+          "the domain's geometry";
+  return text.str();
+}
+
+//------------------------------------------------------------------------------
 bool refineToTargetCount(const SamplerOptions& options, double gradedArea, double tolerance,
   const std::function<double(double epsilon, double runTarget)>& refine, SamplerResultBase& result)
 {
@@ -88,13 +147,26 @@ bool refineToTargetCount(const SamplerOptions& options, double gradedArea, doubl
     const double count = refine(epsilon, runTarget);
     if (count < 0.0)
     {
-      result.status.aborted = true;
+      result.status.aborted = result.status.error.empty();
       return false;
     }
     result.epsilon = epsilon;
     if (result.capped)
     {
-      break;
+      const std::string runaway =
+        runawayRefinementError(options, runTarget, static_cast<long long>(count), result.stalled);
+      if (runaway.empty())
+      {
+        break; // the user's MaximumNumberOfSamples
+      }
+      // Past refinementLimit a coarser run may still end (a density whose grading needs many
+      // samples at a first guess of eps), unless the mesher stalled or this was the last run.
+      if (result.stalled || run == 4)
+      {
+        result.status.error = runaway;
+        return false;
+      }
+      result.capped = false;
     }
     epsilon *= std::sqrt(count / target);
     if (runTarget == target && std::abs(count / target - 1.0) <= tolerance)

@@ -44,6 +44,7 @@ struct SamplerResultBase
   // the target), or aborted.
   Status status;
   bool capped = false;              // the refinement stopped at maximumNumberOfSamples
+  bool stalled = false;             // ... or stepped without inserting (capped is set too)
   std::vector<double> mass;         // density integrated over each sample's Voronoi cell clipped
                                     // to the domain, normalized to sum to sourceMass
   double sourceMass = 0.0;          // pi for the unit disk, 4 pi for the sphere, else the area
@@ -66,20 +67,44 @@ struct SamplerResult : SamplerResultBase
 // What is wrong with a value of the options (named as the filters' properties), or "".
 std::string checkSamplerOptions(const SamplerOptions& options);
 
+// The density scaled to a largest value in [1/4, 1) by an even power of two (positive values
+// stay at least the smallest normal double): only ratios of the density matter to a sampler (the threshold is calibrated to the
+// target count, the masses are normalized to the source's), and its relaxation integrates
+// g^2 or g^4, which overflows for values above 1e77 and made NaN samples (a contrast of 1e300,
+// found by the fuzzer). Zero stays zero, so the support is unchanged.
+std::vector<double> relativeDensity(const std::vector<double>& values);
+
 // Standard deviation over mean of the masses (0 for no masses).
 double massCoefficientOfVariation(const std::vector<double>& mass);
 
 // The warning when the sample count missed the target by more than 10% (uncapped), or "".
 std::string sampleCountWarning(long long reached, long long target, bool capped);
 
+// The most samples one refinement run may place: MaximumNumberOfSamples, and for a run aiming at
+// `runTarget` samples (for an angles-only repair, its input count) at most 10 x its target +
+// 2e4. Grading alone needs far fewer (a density range of 1e300 adds a few thousand); a run
+// past it does not end in reasonable time: a disk with a spike 1e6 times its radius needs
+// millions of samples to mesh at 30 degrees, and CGAL's insertions into its long thin
+// triangles cost O(n) each (1e5 samples in 42 s).
+long long refinementLimit(const SamplerOptions& options, double runTarget);
+
+// The error for a run that was capped (`reached` samples) when it stalled or its cap was
+// refinementLimit below MaximumNumberOfSamples (a runaway), naming what to check; "" when the
+// cap was the user's MaximumNumberOfSamples.
+std::string runawayRefinementError(
+  const SamplerOptions& options, double runTarget, long long reached, bool stalled);
+
 // The target-count loop of the graded refinement: the count scales like 1 / eps^2, so the first
 // eps is sqrt(gradedArea / target) and each later one is corrected by sqrt(count / target);
 // targets of 4000 and more first run at a quarter of the target (cheap), which calibrates the
 // constant. `refine(epsilon, runTarget)` refines from scratch and returns the count it
-// reached, or a negative number when aborted; it sets result.capped when it hit the cap. Stops
+// reached, or a negative number when aborted or failed (with result.status.error set); it sets
+// result.capped when it hit the cap. Stops
 // when a full-target run lands within `tolerance` (relative) of the target, after 5 runs, or
 // when capped. Sets result.epsilon (of the last run) and result.refinementRuns. Returns false
-// when aborted (result.status.aborted is then set).
+// when aborted (result.status.aborted is then set) or when the refinement ran away (the last
+// run stopped at refinementLimit below MaximumNumberOfSamples, or any run stalled;
+// result.status.error says so).
 bool refineToTargetCount(const SamplerOptions& options, double gradedArea, double tolerance,
   const std::function<double(double epsilon, double runTarget)>& refine, SamplerResultBase& result);
 

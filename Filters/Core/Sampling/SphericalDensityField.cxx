@@ -1,6 +1,7 @@
 #include "Sampling/SphericalDensityField.h"
 
 #include "Common/SphericalGeometry.h"
+#include "Sampling/Sampler.h"
 
 #include <algorithm>
 #include <cmath>
@@ -23,7 +24,7 @@ std::unique_ptr<SphericalDensityField> SphericalDensityField::create(
   std::unique_ptr<SphericalDensityField> field(new SphericalDensityField);
   field->Points = points;
   field->Triangles = triangles;
-  field->PerTriangle = perTriangle;
+  field->PerTriangle = relativeDensity(perTriangle); // non-finite and non-positive values kept
   error = field->checkAndBuild();
   if (!error.empty())
   {

@@ -32,6 +32,8 @@
 #include <map>
 #include <numeric>
 #include <queue>
+#include <stdexcept>
+#include <string>
 #include <tuple>
 #include <unordered_map>
 
@@ -146,12 +148,13 @@ struct Grading
 class Refinement
 {
 public:
-  Refinement(const SphericalDensityField& field, const SamplerOptions& options, double epsilon)
+  Refinement(const SphericalDensityField& field, const SamplerOptions& options, double epsilon,
+    long long cap)
     : Field(field)
     , Grade{ options.mode == SamplingMode::Adaptive, options.sizeRule }
     , Epsilon(epsilon)
     , SinMinimumAngle(std::sin(options.minimumAngleDegrees * Pi / 180.0))
-    , Cap(options.maximumNumberOfSamples)
+    , Cap(cap)
   {
   }
 
@@ -312,6 +315,13 @@ struct Diagram
 
 Diagram diagramOf(DT& dt)
 {
+  if (dt.dimension() < 2)
+  {
+    // No faces to circulate: the samples lie on one great circle (or are fewer than 4).
+    throw std::runtime_error("the samples lie on one great circle (" +
+      std::to_string(dt.number_of_vertices()) +
+      " samples left): raise NumberOfSamples or lower the density's range");
+  }
   Diagram d;
   std::unordered_map<const void*, int> id;
   for (auto v = dt.vertices_begin(); v != dt.vertices_end(); ++v)
@@ -486,7 +496,7 @@ void relax(const SphericalDensityField& field, double power, bool equalizeMass, 
     }
     for (long long i = 0; i < n; ++i)
     {
-      if (weighted[i] > 0.0 && norm(moment[i]) > 0.0)
+      if (weighted[i] > 0.0 && norm(moment[i]) > 0.0 && std::isfinite(norm(moment[i])))
       {
         samples[i] = normalized(moment[i]);
       }
@@ -615,7 +625,8 @@ Diagram repairAngles(const SphericalDensityField& field, const SamplerOptions& o
   SamplerOptions repairOptions = options;
   repairOptions.minimumAngleDegrees = std::max(
     0.5 * options.minimumAngleDegrees, options.minimumAngleDegrees - RepairAngleSlackDegrees);
-  Refinement repair(field, repairOptions, std::numeric_limits<double>::infinity());
+  Refinement repair(field, repairOptions, std::numeric_limits<double>::infinity(),
+    refinementLimit(options, static_cast<double>(samples.size())));
   repair.run(samples, hints, [](long long) { return true; });
   return diagramOf(repair.triangulation());
 }
@@ -638,7 +649,8 @@ Candidate sampleRefined(
   double done = 0.0; // progress: the runs together refine about 2.2 times the target
   const auto refine = [&](double epsilon, double runTarget) -> double
   {
-    refinement = std::make_unique<Refinement>(field, options, epsilon);
+    refinement =
+      std::make_unique<Refinement>(field, options, epsilon, refinementLimit(options, runTarget));
     const double share = runTarget / (2.2 * target), start = done;
     done = std::min(0.9, done + 0.9 * share);
     const bool finished = refinement->run(icosahedron(), {},

@@ -182,6 +182,84 @@ TEST(AdaptiveSampler, RejectsWhatItCannotSample)
   EXPECT_NE(sampleDensity(*field, options).status.error, "");
 }
 
+// Only the density's ratios matter: scaled by 2^1000 the samples and masses are the same bits;
+// a contrast of 1e300 (g^2 and g^4 in the relaxation overflowed before the values were taken
+// relative to the largest) gives finite samples and masses.
+TEST(AdaptiveSampler, DensityValuesNearTheEndsOfDoublePrecision)
+{
+  const PlanarMesh disk = makeDisk(12);
+  const auto g = [](Vec2 p) { return 1.0 + 50.0 * std::exp(-20.0 * dot(p, p)); };
+  const SamplerResult plain = adaptiveSamples(*fieldOf(disk, g), 300);
+  for (double scale : { std::ldexp(1.0, 1000), std::ldexp(1.0, -1000) })
+  {
+    const SamplerResult r = adaptiveSamples(*fieldOf(disk, [&](Vec2 p) { return scale * g(p); }), 300);
+    ASSERT_EQ(r.samples.size(), plain.samples.size()) << scale;
+    for (size_t i = 0; i < r.samples.size(); ++i)
+    {
+      ASSERT_EQ(r.samples[i].x, plain.samples[i].x);
+      ASSERT_EQ(r.mass[i], plain.mass[i]);
+    }
+  }
+  for (SamplingMode mode : { SamplingMode::Adaptive, SamplingMode::Uniform })
+  {
+    SamplerOptions options;
+    options.mode = mode;
+    options.numberOfSamples = 300;
+    const auto peaked = fieldOf(disk, [](Vec2 p) { return dot(p, p) < 0.05 ? 1e300 : 1.0; });
+    const SamplerResult r = sampleDensity(*peaked, options);
+    ASSERT_EQ(r.status.error, "");
+    ASSERT_GT(r.samples.size(), 3u);
+    for (size_t i = 0; i < r.samples.size(); ++i)
+    {
+      ASSERT_TRUE(std::isfinite(r.samples[i].x) && std::isfinite(r.samples[i].y));
+      ASSERT_TRUE(std::isfinite(r.mass[i]) && r.mass[i] >= 0.0);
+    }
+    EXPECT_NEAR(sum(r.mass), Pi, 1e-12);
+  }
+}
+
+// A boundary point moved out to 1e4 times the radius makes a spike that needs many more samples
+// than the target to mesh at 30 degrees, and CGAL inserts into its long thin triangles in O(n)
+// each (at 1e6: 1e5 samples in 42 s, and the runs went on): the runs stop at refinementLimit
+// with an error naming the domain's geometry, unless the user's MaximumNumberOfSamples is the
+// lower cap; at 1e6 its boundary alone is too long. At 1e300 (the fuzzer's sampler-plane seed
+// 2 case 797, minutes) the domain is refused: squared lengths would overflow.
+TEST(AdaptiveSampler, RunawayRefinementIsAnError)
+{
+  const auto spike = [](double reach, std::string& error)
+  {
+    PlanarMesh disk = makeDisk(5);
+    disk.points.back() = reach * disk.points.back();
+    return DensityField::create(
+      disk.points, disk.triangles, std::vector<double>(disk.points.size(), 1.0), {}, error);
+  };
+  std::string error;
+  EXPECT_FALSE(spike(1e300, error));
+  EXPECT_NE(error.find("rescale the domain"), std::string::npos) << error;
+  SamplerOptions options;
+  options.numberOfSamples = 300;
+  EXPECT_EQ(refinementLimit(options, 300.0), 23000);
+  const auto longSpike = spike(1e6, error);
+  ASSERT_TRUE(longSpike) << error;
+  error = sampleDensity(*longSpike, options).status.error;
+  EXPECT_NE(error.find("boundary alone needs more than 23000 samples"), std::string::npos) << error;
+  const auto field = spike(1e4, error);
+  ASSERT_TRUE(field) << error;
+  ASSERT_FALSE(field->isConvex());
+  const SamplerResult r = sampleDensity(*field, options);
+  EXPECT_NE(r.status.error.find("the refinement placed 23000 samples for a run aiming at 300 and "
+                                "was stopped: the domain has features too fine"),
+    std::string::npos)
+    << r.status.error;
+  EXPECT_TRUE(r.samples.empty());
+  options.maximumNumberOfSamples = 15000; // the user's cap is a cap, not an error
+  EXPECT_EQ(refinementLimit(options, 300.0), 15000);
+  const SamplerResult capped = sampleDensity(*field, options);
+  EXPECT_EQ(capped.status.error, "");
+  EXPECT_TRUE(capped.capped);
+  EXPECT_LE(capped.samples.size(), 15000u);
+}
+
 TEST(AdaptiveSampler, CapStopsTheRefinement)
 {
   const PlanarMesh disk = makeDisk(10);

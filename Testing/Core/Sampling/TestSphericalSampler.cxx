@@ -17,8 +17,10 @@
 #include <map>
 #include <numeric>
 #include <random>
+#include <set>
 #include <sstream>
 #include <string>
+#include <tuple>
 
 using namespace otparam;
 
@@ -245,6 +247,50 @@ TEST(SphericalSampler, BadInputIsAClearError)
   EXPECT_NE(errorOf(mesh.points, outOfRange, g), "");
   options.numberOfSamples = 2;
   EXPECT_NE(errorOf(mesh.points, mesh.triangles, g), "");
+}
+
+// Only the density's ratios matter: scaled by 2^1000 (exact) the samples and masses are the same
+// bits, and one triangle 1e300 times the rest (the fuzzer's sampler-sphere seed 1 case 22: its
+// relaxation squared the values to inf, moved samples to NaN, and CGAL's triangulation of them
+// crashed in some runs) gives finite, distinct samples.
+TEST(SphericalSampler, DensityValuesNearTheEndsOfDoublePrecision)
+{
+  const SurfaceMesh mesh = otparam::testing::convexHullMesh(otparam::testing::fibonacciSphere(232));
+  std::vector<double> g = zonalDensity(mesh, 50.0);
+  const SphericalSamplerResult plain = sample(mesh, g, SamplingMode::Adaptive, 123);
+  expectSphericalSampling(plain);
+  for (double scale : { std::ldexp(1.0, 1000), std::ldexp(1.0, -1000) })
+  {
+    std::vector<double> scaled = g;
+    for (double& v : scaled)
+    {
+      v *= scale;
+    }
+    const SphericalSamplerResult r = sample(mesh, scaled, SamplingMode::Adaptive, 123);
+    expectSphericalSampling(r);
+    ASSERT_EQ(r.samples.size(), plain.samples.size()) << scale;
+    for (size_t i = 0; i < r.samples.size(); ++i)
+    {
+      ASSERT_EQ(r.samples[i].x, plain.samples[i].x);
+      ASSERT_EQ(r.mass[i], plain.mass[i]);
+    }
+  }
+  g[17] *= 1e300;
+  for (SamplingMode mode : { SamplingMode::Adaptive, SamplingMode::Uniform })
+  {
+    const SphericalSamplerResult r = sample(mesh, g, mode, 123);
+    ASSERT_TRUE(r.status.ok()) << r.status.error;
+    ASSERT_GE(r.samples.size(), 4u);
+    std::set<std::tuple<double, double, double>> distinct;
+    for (size_t i = 0; i < r.samples.size(); ++i)
+    {
+      ASSERT_TRUE(std::isfinite(r.mass[i]) && r.mass[i] >= 0.0);
+      ASSERT_NEAR(norm(r.samples[i]), 1.0, 1e-12);
+      distinct.insert({ r.samples[i].x, r.samples[i].y, r.samples[i].z });
+    }
+    EXPECT_EQ(distinct.size(), r.samples.size());
+    EXPECT_NEAR(sum(r.mass), 4.0 * Pi, 1e-12 * 4.0 * Pi);
+  }
 }
 
 // Figures for the report: count, spread, angle and time at 1e3, 1e4, 1e5 samples (run with
