@@ -276,6 +276,7 @@ def render_histograms(table, path, size):
     matrix = vtkChartMatrix()
     matrix.SetSize(vtkVector2i(2, 2))
     matrix.SetGutter(vtkVector2f(70.0, 70.0))
+    matrix.SetBorders(70, 40, 20, 30)  # room for the left column's axis title
     view.GetScene().AddItem(matrix)
     panels = [("ConformalAngleDistortion", "conformal: mean |log angle ratio|", (0, 1)),
               ("AreaPreservingAngleDistortion", "area-preserving: mean |log angle ratio|", (1, 1)),
