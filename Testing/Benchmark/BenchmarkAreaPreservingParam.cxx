@@ -4,12 +4,26 @@
 // total (median of the runs), peak memory, the scorer's figures, and CGAL's iterative authalic map
 // from reference-figures.md beside them.
 //
+// With --progress-gaps, a second table: per stage, how often the pipeline asked whether to go
+// on (its progress callback, where vtkAreaPreservingParam checks AbortExecute) and the longest
+// time between two such checks, i.e. how long an abort can take in that stage. --subdivide K
+// applies K steps of Loop subdivision (CGAL) to each mesh first (the large-surface figures).
+//
 //   otparam_param_benchmark [--repeat R] [--samples N] [--correction-decrease F]
-//                           [--no-correction] [mesh ...]   (default: every shared mesh)
+//                           [--no-correction] [--subdivide K] [--progress-gaps]
+//                           [mesh ...]   (default: every shared mesh)
 #include "ForkedRun.h"
 #include "MeshFiles.h"
 #include "Pipeline/AreaPreservingPipeline.h"
 
+#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+#include <CGAL/Simple_cartesian.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/subdivision_method_3.h>
+
+#include <array>
+#include <chrono>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <string>
@@ -41,9 +55,15 @@ const Reference References[] = {
   { "brain_choi_closed_48k.off", -1, -1 },
 };
 
+// The stages as the pipeline names them in its progress callback.
+const char* const Stages[] = { "conformal", "sampling", "transport", "composition" };
+constexpr int StageCount = 4;
+
 struct Row
 {
   bool ok;
+  int checks[StageCount];
+  double longestGap[StageCount]; // seconds between two progress checks, by the later's stage
   double conformal, sampler, transport, composition, total, peak;
   int samples, iterations, converged, sweeps;
   double relativeError, interpolatedArea, area, areaMax, angle;
@@ -75,16 +95,91 @@ Row rowOf(const Map& map)
   return row;
 }
 
-Row run(const TriangleSoup& mesh, const AreaPreservingOptions& options)
+int stageIndex(const char* stage)
 {
-  return chooseDomain(mesh) == Domain::Sphere ? rowOf(parameterizeSphere(mesh, options))
-                                              : rowOf(parameterizeDisk(mesh, options));
+  for (int k = 0; k < StageCount; ++k)
+  {
+    if (std::strstr(stage, Stages[k]))
+    {
+      return k;
+    }
+  }
+  return StageCount - 1;
+}
+
+Row run(const TriangleSoup& mesh, AreaPreservingOptions options)
+{
+  using Clock = std::chrono::steady_clock;
+  int checks[StageCount] = {};
+  double longest[StageCount] = {};
+  Clock::time_point last = Clock::now();
+  int lastStage = 0;
+  options.progress = [&](const char* stage, double)
+  {
+    const Clock::time_point now = Clock::now();
+    const int k = stageIndex(stage);
+    ++checks[k];
+    longest[k] = std::max(longest[k], std::chrono::duration<double>(now - last).count());
+    last = now;
+    lastStage = k;
+    return true;
+  };
+  Row row = chooseDomain(mesh) == Domain::Sphere ? rowOf(parameterizeSphere(mesh, options))
+                                                : rowOf(parameterizeDisk(mesh, options));
+  // From the last check to the end: the composition's figures, counted as the last stage's.
+  longest[lastStage] =
+    std::max(longest[lastStage], std::chrono::duration<double>(Clock::now() - last).count());
+  std::copy(checks, checks + StageCount, row.checks);
+  std::copy(longest, longest + StageCount, row.longestGap);
+  return row;
+}
+
+// K steps of CGAL's Loop subdivision (the surface is smoothed; a boundary stays a boundary).
+TriangleSoup loopSubdivided(const TriangleSoup& soup, int steps)
+{
+  using Kernel = CGAL::Simple_cartesian<double>;
+  using Mesh = CGAL::Surface_mesh<Kernel::Point_3>;
+  std::vector<Kernel::Point_3> points;
+  for (const Vec3& p : soup.points)
+  {
+    points.emplace_back(p.x, p.y, p.z);
+  }
+  std::vector<std::vector<std::size_t>> polygons;
+  for (const auto& t : soup.triangles)
+  {
+    polygons.push_back({ static_cast<std::size_t>(t[0]), static_cast<std::size_t>(t[1]),
+      static_cast<std::size_t>(t[2]) });
+  }
+  Mesh mesh;
+  CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh(points, polygons, mesh);
+  CGAL::Subdivision_method_3::Loop_subdivision(
+    mesh, CGAL::parameters::number_of_iterations(steps));
+  TriangleSoup out;
+  std::vector<int> id(mesh.number_of_vertices(), -1);
+  for (const auto v : mesh.vertices())
+  {
+    id[v.idx()] = static_cast<int>(out.points.size());
+    const auto& p = mesh.point(v);
+    out.points.push_back({ p.x(), p.y(), p.z() });
+  }
+  for (const auto f : mesh.faces())
+  {
+    std::array<std::int64_t, 3> t{};
+    int k = 0;
+    for (const auto v : CGAL::vertices_around_face(mesh.halfedge(f), mesh))
+    {
+      t[k++] = id[v.idx()];
+    }
+    out.triangles.push_back(t);
+  }
+  return out;
 }
 } // namespace
 
 int main(int argc, char** argv)
 {
-  int repeat = 3;
+  int repeat = 3, subdivide = 0;
+  bool progressGaps = false;
   AreaPreservingOptions options; // vtkAreaPreservingParam's defaults
   std::vector<std::string> meshes;
   for (int i = 1; i < argc; ++i)
@@ -97,6 +192,10 @@ int main(int argc, char** argv)
       options.composition.correctionRelativeDecrease = std::atof(argv[++i]);
     else if (!std::strcmp(argv[i], "--no-correction"))
       options.composition.correctAreas = false;
+    else if (!std::strcmp(argv[i], "--subdivide") && i + 1 < argc)
+      subdivide = std::max(0, std::atoi(argv[++i]));
+    else if (!std::strcmp(argv[i], "--progress-gaps"))
+      progressGaps = true;
     else
       meshes.push_back(argv[i]);
   }
@@ -114,9 +213,14 @@ int main(int argc, char** argv)
               "| MiB | its | rel. error | flips interp/final | area interp | area | area max | "
               "angle | sweeps | CGAL IA area | CGAL IA s |\n"
               "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  std::vector<std::pair<std::string, Row>> gaps;
   for (const auto& name : meshes)
   {
-    const TriangleSoup mesh = testing::readSoup(testing::sharedMesh(name));
+    TriangleSoup mesh = testing::readSoup(testing::sharedMesh(name));
+    if (subdivide > 0)
+    {
+      mesh = loopSubdivided(mesh, subdivide);
+    }
     std::vector<Row> rows;
     for (int r = 0; r < repeat; ++r)
     {
@@ -131,6 +235,7 @@ int main(int argc, char** argv)
     if (rows.empty())
       continue;
     const Row& last = rows.back();
+    gaps.emplace_back(name, last);
     const Reference* ref = nullptr;
     for (const auto& r : References)
       if (name == r.mesh)
@@ -147,6 +252,22 @@ int main(int argc, char** argv)
     else
       std::printf(" - | - |\n");
     std::fflush(stdout);
+  }
+  if (progressGaps)
+  {
+    std::printf("\nAbort latency: per stage, the progress checks (where AbortExecute is read) and the "
+                "longest time between two of them, seconds (last run)\n\n"
+                "| mesh | vertices | conformal | sampling | transport | composition |\n"
+                "|---|---|---|---|---|---|\n");
+    for (const auto& [name, row] : gaps)
+    {
+      std::printf("| %s | %s |", name.c_str(), subdivide > 0 ? "subdivided" : "");
+      for (int k = 0; k < StageCount; ++k)
+      {
+        std::printf(" %d checks, %.2f s |", row.checks[k], row.longestGap[k]);
+      }
+      std::printf("\n");
+    }
   }
   return 0;
 }
