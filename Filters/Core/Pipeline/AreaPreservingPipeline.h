@@ -10,6 +10,7 @@
 #include "Pipeline/DiskStages.h"
 #include "Pipeline/SphereStages.h"
 
+#include <cstdint>
 #include <functional>
 
 namespace otparam
@@ -28,6 +29,9 @@ struct AreaPreservingOptions
   CompositionOptions composition;
   // Called with (stage name, fraction of the whole run done); returning false aborts.
   std::function<bool(const char*, double)> progress;
+  // Bytes the run may use; 0: what the machine has available. A surface whose map would need
+  // more (estimatedMemoryBytes) is refused with a message instead of swapping.
+  std::int64_t memoryLimitBytes = 0;
 
   std::string check() const; // "" or what is wrong with a value (named as the property)
 };
@@ -51,6 +55,11 @@ struct AreaPreservingResult
   double secondsConformal = 0, secondsSampling = 0, secondsTransport = 0, secondsComposition = 0,
          secondsTotal = 0;
 };
+
+// The peak memory of a whole map, from the input's vertex count and the sample count (measured on
+// the shared meshes and their Loop subdivisions up to 1.09M vertices: 1.8-2.7 KiB per vertex,
+// docs/robustness.md).
+std::int64_t estimatedMemoryBytes(std::int64_t vertices, std::int64_t samples);
 
 AreaPreservingResult parameterizeDisk(
   const TriangleSoup& surface, const AreaPreservingOptions& options = AreaPreservingOptions());

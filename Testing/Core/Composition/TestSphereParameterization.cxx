@@ -60,6 +60,27 @@ void expectValidMap(const SphereParameterizationResult& r)
   }
 }
 
+// A map that would not fit in the memory limit is refused before any work, with both amounts
+// (a surface of 1e7 triangles needs ~13 GiB: on a smaller machine it must not swap).
+TEST(Pipeline, RefusesWhatWouldNotFitInMemory)
+{
+  EXPECT_EQ(estimatedMemoryBytes(1000000, 5000), (64 << 20) + 2800LL * 1000000 + 2000LL * 5000);
+  const TriangleSoup sphere =
+    toSoup(otparam::testing::convexHullMesh(otparam::testing::fibonacciSphere(300)));
+  AreaPreservingOptions options;
+  options.sampling.numberOfSamples = 200;
+  options.memoryLimitBytes = 32 << 20;
+  const SphereParameterizationResult refused = parameterizeSphere(sphere, options);
+  EXPECT_NE(refused.status.error.find("Mapping a surface of 300 points with 200 samples needs "
+                                      "about 0.1 GiB of memory, but 0.0 GiB are available"),
+    std::string::npos)
+    << refused.status.error;
+  EXPECT_TRUE(refused.composition.sphere.empty());
+  EXPECT_EQ(parameterizeDisk(sphere, options).status.error, refused.status.error);
+  options.memoryLimitBytes = 0; // what the machine has: a small map fits
+  EXPECT_TRUE(parameterizeSphere(sphere, options).status.ok());
+}
+
 // The surface is the unit sphere with its points crowded toward a pole: both maps are
 // rotations.
 TEST(SphereParameterization, CrowdedRoundSphereMapsByARotation)
