@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <tuple>
 
 namespace otparam
 {
@@ -98,6 +99,8 @@ CompositionResult composeWithInverseTransport(const SurfaceMesh& surface,
 
   auto start = Clock::now();
   SampleInterpolant interpolant(samples, sampleImages);
+  std::tie(result.flippedSampleTriangles, result.flippedSampleTrianglesAfterUntangling) =
+    interpolant.untangleImages();
   result.interpolatedUv.resize(conformalUv.size());
   for (size_t v = 0; v < conformalUv.size(); ++v)
   {

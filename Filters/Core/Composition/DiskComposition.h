@@ -8,9 +8,14 @@
 //    a circular segment outside that triangulation (between two boundary samples) is mapped
 //    by the same interpolation along the chord and a radial blend to the circle, so mesh
 //    boundary vertices end exactly on the circle.
-// 2. Untangling. A triangle whose three images are in the wrong order (the interpolant is
-//    only piecewise linear, and a mesh triangle may straddle several sample triangles) is
-//    repaired by Tutte relaxation of a small, growing neighbourhood with its rim fixed.
+// 2. Untangling. The centroids are not always in the order of their samples: a triangle of the
+//    samples' Delaunay triangulation may map flipped (hand_choi_53k: 270 of 9492), and every
+//    mesh triangle inside it would inherit the flip (the face subdivided to 1.09M points: 4329
+//    flipped mesh triangles, 1265 left after untangling them). So the sample images are
+//    untangled first, on the samples' triangulation (its hull, on the circle, stays there);
+//    then the few mesh triangles that still map flipped (those spanning several sample
+//    triangles where the map bends) are repaired the same way on the mesh. Both use
+//    Freitag-Plassmann moves of a small, growing neighbourhood (Untangling.h).
 // 3. Area correction (optional, on by default). The transport is area-preserving in the limit
 //    of many samples; at a finite count, what remains is the interpolation error inside each
 //    sample triangle (mesh triangles that span several sample triangles where the transport
@@ -42,6 +47,8 @@ struct CompositionResult
   std::vector<Vec2> uv;                       // final disk coordinates per mesh point
   std::vector<Vec2> interpolatedUv;           // after step 1 only
   std::int64_t outsideSampleHull = 0;         // mesh points mapped through a circular segment
+  std::int64_t flippedSampleTriangles = 0;    // of the samples' triangulation under T^-1 ...
+  std::int64_t flippedSampleTrianglesAfterUntangling = 0; // ... and after untangling them
   std::int64_t flippedAfterInterpolation = 0; // triangles with signed area <= 0 after step 1
   std::int64_t untangledVertices = 0;         // vertices moved by step 2
   std::int64_t flippedTriangles = 0;          // after everything (0 unless untangling failed)

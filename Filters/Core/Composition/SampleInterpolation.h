@@ -4,6 +4,7 @@
 #define OTPARAM_COMPOSITION_SAMPLEINTERPOLATION_H
 
 #include "Composition/Composition.h"
+#include "Composition/Untangling.h"
 
 #include <CGAL/Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -40,6 +41,61 @@ public:
       }
     }
     this->Triangulation.insert(points.begin(), points.end());
+  }
+
+  // The triangles of the samples' triangulation whose images are flipped (the cell centroids
+  // are not always in the order of the samples around them: hand_choi_53k, 270 of 9492) each
+  // carry the flip into every mesh triangle inside them: untangled here, on the samples, where
+  // it is cheap and one fix serves all those mesh triangles. The hull samples (on the circle)
+  // stay on it. Returns {flipped sample triangles before, after}; nothing is done (and {n, n}
+  // returned) when a hull sample is off the circle.
+  std::pair<std::int64_t, std::int64_t> untangleImages()
+  {
+    SurfaceMesh mesh;
+    mesh.points.resize(this->Images.size());
+    for (auto v = this->Triangulation.finite_vertices_begin();
+         v != this->Triangulation.finite_vertices_end(); ++v)
+    {
+      mesh.points[v->info()] = { v->point().x(), v->point().y(), 0.0 };
+    }
+    for (auto f = this->Triangulation.finite_faces_begin();
+         f != this->Triangulation.finite_faces_end(); ++f)
+    {
+      mesh.triangles.push_back(
+        { f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info() });
+    }
+    const auto before = static_cast<std::int64_t>(flippedTriangles(mesh.triangles, this->Images).size());
+    // Hull edges, counter-clockwise: an infinite face (inf, a, b) has the hull edge b -> a.
+    std::vector<std::pair<int, int>> hullEdges;
+    auto face = this->Triangulation.incident_faces(this->Triangulation.infinite_vertex()),
+         done = face;
+    do
+    {
+      const int k = face->index(this->Triangulation.infinite_vertex());
+      hullEdges.emplace_back(face->vertex(DT::cw(k))->info(), face->vertex(DT::ccw(k))->info());
+    } while (++face != done);
+    std::vector<int> hull, next(this->Images.size(), -1);
+    for (const auto& [a, b] : hullEdges)
+    {
+      next[a] = b;
+    }
+    for (int v = hullEdges.empty() ? -1 : hullEdges.front().first;
+         v >= 0 && hull.size() < hullEdges.size(); v = next[v])
+    {
+      if (!onCircle(this->Images[v]))
+      {
+        return { before, before };
+      }
+      hull.push_back(v);
+    }
+    if (before == 0 || hull.size() != hullEdges.size())
+    {
+      return { before, before };
+    }
+    const VertexStars stars(mesh.points.size(), mesh.triangles);
+    Untangler(mesh, hull, stars).run(this->Images);
+    return { before,
+      static_cast<std::int64_t>(flippedTriangles(mesh.triangles, this->Images).size()) };
   }
 
   // Returns the image of p; `outsideHull` tells whether p lay outside the samples' hull.
