@@ -373,7 +373,7 @@ void correctAreas(AreaCorrectionOn<Geometry>& correction,
   for (int sweep = 0; sweep < std::min(options.maximumCorrectionSweeps, PolishSweeps); ++sweep)
   {
     ++sweeps;
-    if (correction.sweep(points) == 0)
+    if (correction.sweep(points) == 0 || !report(0.9))
     {
       break;
     }

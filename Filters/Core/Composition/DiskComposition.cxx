@@ -104,6 +104,11 @@ CompositionResult composeWithInverseTransport(const SurfaceMesh& surface,
   result.interpolatedUv.resize(conformalUv.size());
   for (size_t v = 0; v < conformalUv.size(); ++v)
   {
+    // An abort is honoured every 2^18 points (~0.1 s).
+    if ((v & 0x3ffff) == 0x3ffff && !report(0.2 * v / conformalUv.size()))
+    {
+      return result;
+    }
     bool outside = false;
     result.interpolatedUv[v] = interpolant(conformalUv[v], outside);
     result.outsideSampleHull += outside;

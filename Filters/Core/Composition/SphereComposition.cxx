@@ -178,6 +178,12 @@ SphereCompositionResult composeOnSphere(const SurfaceMesh& surface,
   result.interpolated.resize(n);
   for (size_t v = 0; v < n; ++v)
   {
+    // An abort is honoured every 2^18 points (~0.1 s).
+    if ((v & 0x3ffff) == 0x3ffff && !report(0.2 * v / n))
+    {
+      result.status.aborted = true;
+      return result;
+    }
     std::array<double, 3> w{};
     const int t = locator.locate(conformal[v], w);
     if (t < 0)

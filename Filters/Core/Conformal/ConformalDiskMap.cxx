@@ -592,11 +592,16 @@ bool minimizeConformalEnergy(const DiskFlattening& disk, const ConformalDiskMapO
 // Moebius normalization on the boundary angles, re-extending each time so the interior stays
 // harmonic; the discrete map is not exactly Moebius-equivariant, so a few rounds take the
 // centre's offset down (by ~500x per round, measured); the last bit is applied to the points.
-void centreByMoebius(
-  const DiskFlattening& disk, int center, Eigen::VectorXd& theta, Eigen::MatrixXd& X)
+// Returns false when `keepGoing` aborts (checked every round: each is two solves).
+bool centreByMoebius(const DiskFlattening& disk, int center,
+  const std::function<bool(double)>& keepGoing, Eigen::VectorXd& theta, Eigen::MatrixXd& X)
 {
   for (int round = 0; round < 8; ++round)
   {
+    if (!keepGoing(0.8 + 0.02 * round))
+    {
+      return false;
+    }
     const std::complex<double> a(X(center, 0), X(center, 1));
     if (std::abs(a) < 1e-9)
     {
@@ -622,6 +627,7 @@ void centreByMoebius(
     theta = moved;
     X = disk.extend(theta);
   }
+  return true;
 }
 
 // Results per mesh point: the solve's points, clipped ears between their neighbours, with the
@@ -710,6 +716,10 @@ ConformalDiskMapResult computeWithLaplacian(const SurfaceMesh& mesh,
   result.clippedEars = static_cast<int>(clipped.ears.size());
   DiskFlattening disk(mesh, clipped, intrinsicLaplacian);
   result.intrinsicFlips = disk.IntrinsicFlips;
+  if (!keepGoing(0.05))
+  {
+    return result;
+  }
   if (!disk.factor())
   {
     result.status.error = "the cotangent Laplacian could not be factored (degenerate triangles?)";
@@ -748,7 +758,10 @@ ConformalDiskMapResult computeWithLaplacian(const SurfaceMesh& mesh,
   result.centerVertex =
     options.centerVertex >= 0 ? options.centerVertex : disk.Vertices[barycentre];
   const int center = disk.Local[result.centerVertex];
-  centreByMoebius(disk, center, theta, X);
+  if (!centreByMoebius(disk, center, keepGoing, theta, X))
+  {
+    return result;
+  }
   result.secondsIterations = secondsSince(t0);
   placePoints(mesh, clipped, disk, theta, X, center, onBoundary, result);
   keepGoing(1.0);

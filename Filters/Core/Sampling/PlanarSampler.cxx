@@ -498,6 +498,8 @@ void steerOffsets(const DensityField& field, double power, double equalizedPower
   }
 }
 
+// Returns false with `error` set when the density cannot be made a source, or with it empty
+// when the progress callback aborts.
 bool relax(const DensityField& field, const SamplerOptions& options, std::vector<Vec2>& samples,
   const std::vector<char>& onBoundary, std::string& error)
 {
@@ -518,6 +520,12 @@ bool relax(const DensityField& field, const SamplerOptions& options, std::vector
   std::vector<double> heights(samples.size());
   for (int step = 0; step < RelaxationSteps; ++step)
   {
+    // An abort is honoured between steps (each integrates over the whole density mesh: ~1 s at
+    // 1M triangles); error stays empty then.
+    if (options.progress && !options.progress(0.9))
+    {
+      return false;
+    }
     const bool plainStep = !steered || step == RelaxationSteps - 1;
     for (size_t i = 0; i < samples.size(); ++i)
     {
@@ -1192,6 +1200,7 @@ void sampleSupport(
   if (!relax(field, options, all, fixed, error))
   {
     result.status.error = error;
+    result.status.aborted = error.empty();
     return;
   }
   if (options.progress && !options.progress(0.9))
@@ -1313,6 +1322,7 @@ void sampleConvex(
   if (!relax(field, options, relaxed, onBoundary, error))
   {
     result.status.error = error;
+    result.status.aborted = error.empty();
     return;
   }
   if (options.progress && !options.progress(0.9))
