@@ -586,6 +586,16 @@ bool minimizeConformalEnergy(const DiskFlattening& disk, const ConformalDiskMapO
     }
   }
   result.conformalEnergy = energy;
+  if (result.iterations == options.maximumNumberOfIterations &&
+    !(result.lastAngleUpdate < options.tolerance))
+  {
+    std::ostringstream msg;
+    msg << "The boundary angles did not settle in MaximumNumberOfIterations = "
+        << options.maximumNumberOfIterations << " iterations (the last one moved an angle by "
+        << result.lastAngleUpdate << " rad, above Tolerance = " << options.tolerance
+        << "): the map is less conformal than asked; raise MaximumNumberOfIterations.";
+    result.status.warnings.push_back(msg.str());
+  }
   return true;
 }
 

@@ -180,6 +180,7 @@ ConformalStage runConformalStage(const TriangleSoup& soup, const ConformalStageO
     status.error = std::string("The conformal map failed: ") + e.what();
     return stage;
   }
+  status.warnings = stage.map.status.warnings;
   for (int v : stage.boundaryLoop)
   {
     stage.maximumBoundaryRadiusError = std::max(stage.maximumBoundaryRadiusError,

@@ -254,6 +254,26 @@ TEST(ConformalDiskMap, RejectsBadCentreAndAlignVertices)
     std::string::npos);
 }
 
+// The iteration cap is a cap reported when hit: one iteration at a tolerance no map meets
+// leaves a warning that names both properties; the default settles without one.
+TEST(ConformalDiskMap, IterationCapIsReported)
+{
+  const SurfaceMesh mesh = makeHemisphere(16);
+  std::vector<int> loop;
+  ASSERT_EQ(checkDiskTopology(mesh, loop), "");
+  ConformalDiskMapOptions options;
+  EXPECT_TRUE(computeConformalDiskMap(mesh, loop, options).status.warnings.empty());
+  options.maximumNumberOfIterations = 1;
+  options.tolerance = 1e-300;
+  const auto capped = computeConformalDiskMap(mesh, loop, options);
+  ASSERT_TRUE(capped.status.ok()) << capped.status.error;
+  ASSERT_EQ(capped.status.warnings.size(), 1u);
+  EXPECT_NE(capped.status.warnings[0].find("did not settle in MaximumNumberOfIterations = 1"),
+    std::string::npos)
+    << capped.status.warnings[0];
+  EXPECT_NE(capped.status.warnings[0].find("Tolerance = 1e-300"), std::string::npos);
+}
+
 TEST(ConformalDiskMap, AbortStopsEarly)
 {
   const SurfaceMesh mesh = makeHemisphere(8);
