@@ -13,12 +13,6 @@ namespace otparam
 namespace
 {
 
-std::uint64_t edgeKey(int a, int b)
-{
-  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) |
-    static_cast<std::uint32_t>(b);
-}
-
 struct UnionFind
 {
   std::vector<int> parent;
@@ -124,12 +118,15 @@ std::string compactMesh(const std::vector<Vec3>& points,
 
 namespace
 {
-// Directed edge -> triangle, as a sorted array (several times faster than a hash map here); an
-// undirected edge may carry each direction once.
+// The triangles' directed edges sorted by their undirected edge, the two directions of an edge
+// side by side (a sorted array: several times faster than a hash map here), and from that, in
+// one pass, the triangle across each triangle's edge: the fan walks and the boundary then take
+// O(1) per step (a binary search per step took 2.5 s of the checks at 1M points).
 class DirectedEdges
 {
 public:
   explicit DirectedEdges(const std::vector<Triangle>& triangles)
+    : Across(3 * triangles.size(), -1)
   {
     this->Edges.reserve(3 * triangles.size());
     for (size_t t = 0; t < triangles.size(); ++t)
@@ -137,24 +134,33 @@ public:
       for (int k = 0; k < 3; ++k)
       {
         this->Edges.emplace_back(
-          edgeKey(triangles[t][k], triangles[t][(k + 1) % 3]), static_cast<int>(t));
+          sideKey(triangles[t][k], triangles[t][(k + 1) % 3]), static_cast<int>(3 * t + k));
       }
     }
     std::sort(this->Edges.begin(), this->Edges.end());
+    for (size_t e = 1; e < this->Edges.size(); ++e)
+    {
+      const std::uint64_t a = this->Edges[e - 1].first, b = this->Edges[e].first;
+      if ((a >> 1) == (b >> 1) && a != b) // the two directions of one edge
+      {
+        this->Across[this->Edges[e - 1].second] = this->Edges[e].second / 3;
+        this->Across[this->Edges[e].second] = this->Edges[e - 1].second / 3;
+      }
+    }
   }
 
   // A direction used twice (three or more triangles on one edge show up so too), or "".
   template <typename Id>
-  std::string checkEachDirectionOnce(Id id) const
+  std::string checkEachDirectionOnce(Id id, const std::vector<Triangle>& triangles) const
   {
     for (size_t e = 1; e < this->Edges.size(); ++e)
     {
       if (this->Edges[e].first == this->Edges[e - 1].first)
       {
-        const int a = static_cast<int>(this->Edges[e].first >> 32);
-        const int b = static_cast<int>(this->Edges[e].first & 0xffffffffu);
+        const int t = this->Edges[e].second / 3, k = this->Edges[e].second % 3;
+        const int a = triangles[t][k], b = triangles[t][(k + 1) % 3];
         std::ostringstream msg;
-        msg << "triangles " << this->Edges[e - 1].second << " and " << this->Edges[e].second
+        msg << "triangles " << this->Edges[e - 1].second / 3 << " and " << t
             << " both use the edge (" << id(a) << ", " << id(b)
             << ") in the same direction: the surface is non-manifold there or not "
                "consistently oriented";
@@ -164,17 +170,21 @@ public:
     return {};
   }
 
-  // The triangle holding the directed edge (a, b), or -1.
-  int triangleOf(int a, int b) const
-  {
-    const std::uint64_t key = edgeKey(a, b);
-    auto it = std::lower_bound(
-      this->Edges.begin(), this->Edges.end(), std::make_pair(key, std::numeric_limits<int>::min()));
-    return it != this->Edges.end() && it->first == key ? it->second : -1;
-  }
+  // The triangle across edge k (from corner k to corner k + 1) of triangle t, or -1 on the
+  // boundary. Meaningful once checkEachDirectionOnce passed.
+  int across(int t, int k) const { return this->Across[3 * t + k]; }
 
 private:
-  std::vector<std::pair<std::uint64_t, int>> Edges;
+  // The undirected edge, then the direction: (min, max, a > b).
+  static std::uint64_t sideKey(int a, int b)
+  {
+    const std::uint64_t low = static_cast<std::uint32_t>(std::min(a, b));
+    const std::uint64_t high = static_cast<std::uint32_t>(std::max(a, b));
+    return ((low << 32 | high) << 1) | (a > b ? 1u : 0u);
+  }
+
+  std::vector<std::pair<std::uint64_t, int>> Edges; // (sideKey, 3 t + k)
+  std::vector<int> Across;
 };
 
 template <typename Id>
@@ -251,7 +261,7 @@ std::string checkManifoldVertices(const SurfaceMesh& mesh, const DirectedEdges& 
     bool closed = false;
     while (true)
     {
-      t = edges.triangleOf(tris[t][(corner(t, vi) + 1) % 3], vi);
+      t = edges.across(t, corner(t, vi)); // across the edge (v, next)
       if (t < 0 || t == start)
       {
         closed = t == start;
@@ -262,7 +272,7 @@ std::string checkManifoldVertices(const SurfaceMesh& mesh, const DirectedEdges& 
     // An open fan: the other way from the start too.
     for (t = start; !closed;)
     {
-      const int neighbour = edges.triangleOf(vi, tris[t][(corner(t, vi) + 2) % 3]);
+      const int neighbour = edges.across(t, (corner(t, vi) + 2) % 3); // across (previous, v)
       if (neighbour < 0)
       {
         break;
@@ -300,14 +310,13 @@ std::vector<std::vector<int>> boundaryLoops(
   const size_t nv = mesh.points.size();
   std::vector<int> nextOnBoundary(nv, -1);
   boundaryEdges = 0;
-  for (const auto& t : mesh.triangles)
+  for (size_t t = 0; t < mesh.triangles.size(); ++t)
   {
     for (int k = 0; k < 3; ++k)
     {
-      const int a = t[k], b = t[(k + 1) % 3];
-      if (edges.triangleOf(b, a) < 0)
+      if (edges.across(static_cast<int>(t), k) < 0)
       {
-        nextOnBoundary[a] = b;
+        nextOnBoundary[mesh.triangles[t][k]] = mesh.triangles[t][(k + 1) % 3];
         ++boundaryEdges;
       }
     }
@@ -347,7 +356,7 @@ std::string analyzeSurface(
     return error;
   }
   const DirectedEdges edges(mesh.triangles);
-  error = edges.checkEachDirectionOnce(id);
+  error = edges.checkEachDirectionOnce(id, mesh.triangles);
   if (error.empty())
   {
     error = checkManifoldVertices(mesh, edges, id);
