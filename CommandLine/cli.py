@@ -50,8 +50,9 @@ def parse_arguments(argv):
     parser.add_argument("--domain", choices=DOMAINS, default="auto",
                         help="auto (default): closed surfaces onto the sphere, others onto "
                              "the disk")
-    parser.add_argument("--samples", type=int, default=5000, metavar="N",
-                        help="samples (Diracs) of the transport (default 5000)")
+    parser.add_argument("--samples", type=int, default=0, metavar="N",
+                        help="samples (Diracs) of the transport; 0 (default): automatic, 5000 "
+                             "or one per 50 points, whichever is more")
     parser.add_argument("--tolerance", type=float, default=1e-10, metavar="T",
                         help="relative mass error at which the transport stops (default 1e-10)")
     parser.add_argument("--max-iterations", type=int, default=200, metavar="K",
@@ -79,9 +80,11 @@ def parse_arguments(argv):
     parser.add_argument("-q", "--quiet", action="store_true",
                         help="no progress lines, only the final tally")
     arguments = parser.parse_args(argv)
-    for name, low in (("samples", 3), ("max_iterations", 1), ("correction_sweeps", 0)):
+    for name, low in (("samples", 0), ("max_iterations", 1), ("correction_sweeps", 0)):
         if getattr(arguments, name) < low:
             parser.error(f"--{name.replace('_', '-')} must be >= {low}")
+    if 0 < arguments.samples < 3:
+        parser.error("--samples must be 0 (automatic) or >= 3")
     if not 0.0 < arguments.tolerance < 1.0:
         parser.error("--tolerance must be in (0, 1)")
     if arguments.timeout < 0.0:

@@ -74,7 +74,9 @@ public:
   ///@{
   /**
    * Approximate number of Dirac samples of the conformal factor (vtkAdaptiveDensitySampler's
-   * NumberOfSamples). Default 5000.
+   * NumberOfSamples). 0 (the default): automatic, 5000 or one sample per 50 input points,
+   * whichever is more (a surface of 1M points needs ~20000 for the area error of a small one);
+   * the count used is the field data NumberOfSamples.
    */
   vtkSetMacro(NumberOfSamples, int);
   vtkGetMacro(NumberOfSamples, int);

@@ -336,8 +336,8 @@ hints = param.SMProxy.GetHints()
 menu = hints.FindNestedElementByName("ShowInMenu") if hints else None
 check(menu is not None and menu.GetAttribute("category") == "Optimal Transport",
       "Area-Preserving Parameterization is in the menu category 'Optimal Transport'")
-check(param.NumberOfSamples == 5000 and param.Tolerance == 1e-10 and param.AreaCorrection == 1,
-      "pass-through defaults: NumberOfSamples 5000, Tolerance 1e-10, AreaCorrection on")
+check(param.NumberOfSamples == 0 and param.Tolerance == 1e-10 and param.AreaCorrection == 1,
+      "pass-through defaults: NumberOfSamples 0 (automatic), Tolerance 1e-10, AreaCorrection on")
 param.NumberOfSamples = 1500
 param.UpdatePipeline()
 surface = servermanager.Fetch(param, idx=0)

@@ -28,6 +28,9 @@ OWN_DOMAINS = {
     ("ConformalDiskMap", "MaximumNumberOfIterations"):
         "boundary-angle iterations, of which 0 (boundary-first flattening only) is valid; the "
         "transport needs at least one Newton iteration",
+    ("AreaPreservingParameterization", "NumberOfSamples"):
+        "0 (the default) means automatic there: the count follows the surface's point count; "
+        "the sampler itself needs an explicit count of at least 3",
 }
 
 # Proxy name -> (class, label), as interface.md fixes them.

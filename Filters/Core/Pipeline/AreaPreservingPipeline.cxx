@@ -166,6 +166,19 @@ void warnAboutTheMap(Run& run, const char* where)
   }
 }
 
+// The options with NumberOfSamples 0 (automatic) resolved for this surface.
+AreaPreservingOptions withSampleCount(
+  const AreaPreservingOptions& requested, const TriangleSoup& surface)
+{
+  AreaPreservingOptions options = requested;
+  if (options.sampling.numberOfSamples == 0)
+  {
+    options.sampling.numberOfSamples =
+      automaticSampleCount(static_cast<std::int64_t>(surface.points.size()));
+  }
+  return options;
+}
+
 // The four stages chained once, for either domain: each callable runs its stage into `run`;
 // the chain checks the options, times the stages, passes their statuses on (prefixed with the
 // stage's name), stops at the first that fails or aborts, and adds warnAboutTheMap's.
@@ -227,15 +240,33 @@ void chainStages(const AreaPreservingOptions& options, const TriangleSoup& surfa
 //------------------------------------------------------------------------------
 AreaPreservingOptions::AreaPreservingOptions()
 {
-  // A whole map then takes a few seconds at 50k vertices, and the area correction removes what
-  // a finite count leaves (mean |log area ratio| 0.002-0.02 on the shared meshes).
-  this->sampling.numberOfSamples = 5000;
+  this->sampling.numberOfSamples = 0; // automaticSampleCount
+}
+
+//------------------------------------------------------------------------------
+std::int64_t automaticSampleCount(std::int64_t points)
+{
+  // 5000: a whole map then takes a few seconds at 50k points, and the area correction removes
+  // what a finite count leaves (mean |log area ratio| 0.002-0.02 on the shared meshes).
+  return std::max<std::int64_t>(5000, points / 50);
 }
 
 //------------------------------------------------------------------------------
 std::string AreaPreservingOptions::check() const
 {
-  std::string error = checkSamplerOptions(this->sampling);
+  if (this->sampling.numberOfSamples < 3 && this->sampling.numberOfSamples != 0)
+  {
+    std::ostringstream msg;
+    msg << "NumberOfSamples must be 0 (automatic) or at least 3; got "
+        << this->sampling.numberOfSamples << ".";
+    return msg.str();
+  }
+  SamplerOptions sampling = this->sampling;
+  if (sampling.numberOfSamples == 0)
+  {
+    sampling.numberOfSamples = automaticSampleCount(0); // checked again once the surface is known
+  }
+  std::string error = checkSamplerOptions(sampling);
   if (error.empty())
   {
     error = checkTransportOptions(this->transport, this->maximumArcAngle);
@@ -289,8 +320,9 @@ std::int64_t estimatedMemoryBytes(std::int64_t vertices, std::int64_t samples)
 
 //------------------------------------------------------------------------------
 AreaPreservingResult parameterizeDisk(
-  const TriangleSoup& surface, const AreaPreservingOptions& options)
+  const TriangleSoup& surface, const AreaPreservingOptions& requested)
 {
+  const AreaPreservingOptions options = withSampleCount(requested, surface);
   AreaPreservingResult run;
   chainStages(
     options, surface, run, "in the disk",
@@ -372,8 +404,9 @@ void composeOnTheSphere(const AreaPreservingOptions& options, SphereParameteriza
 
 //------------------------------------------------------------------------------
 SphereParameterizationResult parameterizeSphere(
-  const TriangleSoup& surface, const AreaPreservingOptions& options)
+  const TriangleSoup& surface, const AreaPreservingOptions& requested)
 {
+  const AreaPreservingOptions options = withSampleCount(requested, surface);
   SphereParameterizationResult run;
   chainStages(
     options, surface, run, "on the sphere",

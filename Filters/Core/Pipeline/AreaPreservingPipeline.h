@@ -22,7 +22,8 @@ struct AreaPreservingOptions
 
   ConformalStageOptions conformal;
   ConformalSphereMapOptions sphereMap; // the sphere's conformal stage
-  SamplerOptions sampling;             // numberOfSamples 5000: see the constructor
+  // numberOfSamples 0 (the default): automaticSampleCount of the surface's point count.
+  SamplerOptions sampling;
   OTOptions transport;
   // Arcs of the circle in the cells whose middles the boundary samples go to.
   double maximumArcAngle = DefaultMaximumArcAngle;
@@ -55,6 +56,13 @@ struct AreaPreservingResult
   double secondsConformal = 0, secondsSampling = 0, secondsTransport = 0, secondsComposition = 0,
          secondsTotal = 0;
 };
+
+// The sample count that follows the surface: 5000, or one sample per 50 points above 250k
+// points. On the face subdivided to 1.09M points, 5000 samples left a mean |log area ratio| of
+// 0.009 (mean angle distortion 31 degrees) after the correction, 20000 samples 0.0037 (24
+// degrees) in the same time (the correction has less to do); on the shared meshes (up to 56k
+// points) more samples than 5000 change little: their remaining error is at the mesh's scale.
+std::int64_t automaticSampleCount(std::int64_t points);
 
 // The peak memory of a whole map, from the input's vertex count and the sample count (measured on
 // the shared meshes and their Loop subdivisions up to 1.09M vertices: 1.8-2.7 KiB per vertex,

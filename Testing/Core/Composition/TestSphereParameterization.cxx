@@ -60,6 +60,21 @@ void expectValidMap(const SphereParameterizationResult& r)
   }
 }
 
+// NumberOfSamples 0 (the default) follows the surface: 5000, or one per 50 points above 250k.
+TEST(Pipeline, AutomaticSampleCountFollowsTheSurface)
+{
+  EXPECT_EQ(AreaPreservingOptions().sampling.numberOfSamples, 0);
+  EXPECT_EQ(automaticSampleCount(810), 5000);
+  EXPECT_EQ(automaticSampleCount(250000), 5000);
+  EXPECT_EQ(automaticSampleCount(1093281), 21865);
+  AreaPreservingOptions options;
+  EXPECT_EQ(options.check(), "");
+  options.sampling.numberOfSamples = 2;
+  EXPECT_EQ(options.check(), "NumberOfSamples must be 0 (automatic) or at least 3; got 2.");
+  options.sampling.numberOfSamples = 3;
+  EXPECT_EQ(options.check(), "");
+}
+
 // A map that would not fit in the memory limit is refused before any work, with both amounts
 // (a surface of 1e7 triangles needs ~13 GiB: on a smaller machine it must not swap).
 TEST(Pipeline, RefusesWhatWouldNotFitInMemory)
