@@ -4,44 +4,8 @@
 #include <Eigen/CholmodSupport>
 #endif
 
-#include <dlfcn.h>
-
 namespace otparam
 {
-namespace
-{
-// Looked up at run time: the BLAS behind CHOLMOD is whichever libblas.so.3 the system chose
-// (Debian's alternatives), OpenBLAS or not, and the core does not link it itself.
-using SetThreads = void (*)(int);
-using GetThreads = int (*)();
-SetThreads openblasSetThreads()
-{
-  return reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
-}
-GetThreads openblasGetThreads()
-{
-  return reinterpret_cast<GetThreads>(dlsym(RTLD_DEFAULT, "openblas_get_num_threads"));
-}
-} // namespace
-
-ScopedBlasThreads::ScopedBlasThreads(int threads)
-{
-  const SetThreads set = openblasSetThreads();
-  const GetThreads get = openblasGetThreads();
-  if (set && get)
-  {
-    this->Previous = get();
-    set(threads);
-  }
-}
-
-ScopedBlasThreads::~ScopedBlasThreads()
-{
-  if (this->Previous > 0)
-  {
-    openblasSetThreads()(this->Previous);
-  }
-}
 
 // CHOLMOD stays in this file, so that every user of the header sees one class whether or not
 // CHOLMOD was found.

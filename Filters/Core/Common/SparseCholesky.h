@@ -39,22 +39,6 @@ private:
   std::unique_ptr<Cholmod> Supernodal;
 };
 
-// OpenBLAS's thread count (CHOLMOD's supernodal factorization and solves run on it) set for a
-// scope and restored after; a no-op with another BLAS. For factorizations side by side in
-// OpenMP sections: two of them with two BLAS threads each on two cores spent half their time
-// yielding (1.09M points: 8.1 s, against 3.9 s with one BLAS thread each).
-class ScopedBlasThreads
-{
-public:
-  explicit ScopedBlasThreads(int threads);
-  ~ScopedBlasThreads();
-  ScopedBlasThreads(const ScopedBlasThreads&) = delete;
-  ScopedBlasThreads& operator=(const ScopedBlasThreads&) = delete;
-
-private:
-  int Previous = -1;
-};
-
 } // namespace otparam
 
 #endif

@@ -270,9 +270,8 @@ public:
     SparseMatrix LII(NI, NI), LN(N - 1, N - 1);
     LII.setFromTriplets(interior.begin(), interior.end());
     LN.setFromTriplets(pinned.begin(), pinned.end());
-    // The two factorizations are independent: one per core, each on one BLAS thread.
+    // The two factorizations are independent: one per core.
     bool dirichletOk = true, neumannOk = true;
-    const ScopedBlasThreads oneBlasThreadEach(1);
 #pragma omp parallel sections num_threads(2)
     {
 #pragma omp section
