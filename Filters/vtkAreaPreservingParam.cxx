@@ -149,6 +149,7 @@ void WriteFigures(const otparam::AreaPreservingResult& run, vtkDataObject* figur
   AddIntScalar(figures, "FilledHoles", run.conformal.filledHoles);
   AddScalar(figures, "FillAreaFraction", run.conformal.fillAreaFraction);
   AddIntScalar(figures, "CorrectionSweeps", run.composition.correctionSweeps);
+  AddIntScalar(figures, "TransportStages", run.transportStages);
 }
 
 void WriteFigures(const otparam::SphereParameterizationResult& run, vtkDataObject* figures)
@@ -157,6 +158,7 @@ void WriteFigures(const otparam::SphereParameterizationResult& run, vtkDataObjec
   AddIntScalar(figures, "FilledHoles", 0);
   AddScalar(figures, "FillAreaFraction", 0.0);
   AddIntScalar(figures, "CorrectionSweeps", 0);
+  AddIntScalar(figures, "TransportStages", 0);
 }
 
 // Longitude and latitude of points on the sphere, scaled to [0, 1] (texture coordinates).

@@ -61,9 +61,10 @@ bool passOn(const Status& stage, StageRange range, Status& run)
 // (masses are then exact surface areas); `runStage(options)` runs the domain's sampler. The
 // Diracs are the samples of positive mass.
 template <class Run, class RunStage>
-void sample(const AreaPreservingOptions& options, Run& run, const RunStage& runStage)
+void sample(const AreaPreservingOptions& options, Run& run, const std::vector<double>& density,
+  const RunStage& runStage)
 {
-  const std::string densityError = checkDensityValues(run.conformal.areaDensityPerTriangle, "cell");
+  const std::string densityError = checkDensityValues(density, "cell");
   if (!densityError.empty())
   {
     run.sampling.status.error = "The density cell array 'AreaDensity' " + densityError + ".";
@@ -100,7 +101,7 @@ void compose(const AreaPreservingOptions& options, AreaPreservingResult& run)
   compositionOptions.progress = stageProgress(options, CompositionRange);
   try
   {
-    run.composition = composeWithInverseTransport(conformal.surface.mesh, conformal.map.uv,
+    run.composition = composeWithInverseTransport(conformal.surface.mesh, run.startUv,
       conformal.boundaryLoop, run.diracs, run.sampleImages, compositionOptions);
     if (run.composition.status.aborted)
     {
@@ -131,6 +132,130 @@ void compose(const AreaPreservingOptions& options, AreaPreservingResult& run)
 }
 
 constexpr double CrowdedDensityRange = 1e12;
+
+// Crowding: along a long protrusion (a finger, a limb, a tail) the conformal area density grows
+// like exp(2 L / r); the transport converges while the density spans up to ~3e12 and stops at
+// its start beyond (Testing/Python/TestCrowding.py). Above CrowdedDensityRange the transport
+// runs in stages: each samples the current map's density clamped to StageDensityRange times
+// its smallest value, transports, and composes without the area correction (the targets are
+// those of the clamped density); the clamped part then gets up to StageDensityRange times its
+// share of the disk, so each stage divides the range by about that, and the last transport,
+// the usual one, starts from a map whose density it resolves.
+constexpr double StageDensityRange = 1e10;
+constexpr int MaximumTransportStages = 30; // 1e300 / 1e10^30: every range double holds
+
+double rangeOf(const std::vector<double>& density)
+{
+  const auto range = std::minmax_element(density.begin(), density.end());
+  return range.first == density.end() ? 1.0 : *range.second / *range.first;
+}
+
+// One stage: the map startUv moved by the transport of its clamped density. "" or the error.
+std::string transportStage(const AreaPreservingOptions& options, AreaPreservingResult& run,
+  const std::function<bool(double)>& keepGoing)
+{
+  const SurfaceMesh& mesh = run.conformal.surface.mesh;
+  const double lowest = *std::min_element(run.startDensity.begin(), run.startDensity.end());
+  std::vector<double> clamped = run.startDensity;
+  for (double& g : clamped)
+  {
+    g = std::min(g, lowest * StageDensityRange);
+  }
+  SamplerOptions samplerOptions = options.sampling;
+  samplerOptions.progress = keepGoing;
+  const SamplingStage sampling =
+    runSamplingStage(run.startUv, mesh.triangles, {}, clamped, samplerOptions);
+  if (!sampling.status.ok())
+  {
+    run.status.aborted = sampling.status.aborted;
+    return "sampling: " + sampling.status.error;
+  }
+  std::vector<Vec2> diracs;
+  std::vector<double> masses;
+  for (std::size_t i = 0; i < sampling.result.samples.size(); ++i)
+  {
+    if (sampling.result.mass[i] > 0.0)
+    {
+      diracs.push_back(sampling.result.samples[i]);
+      masses.push_back(sampling.result.mass[i]);
+    }
+  }
+  OTOptions transportOptions = options.transport;
+  transportOptions.progress = [&keepGoing](int, double) { return keepGoing(0.0); };
+  const std::unique_ptr<SourceMeasure> disk = makeUnitDiskSource();
+  const TransportStage transport =
+    runTransportStage(*disk, diracs, masses, transportOptions, options.maximumArcAngle);
+  if (transport.status.aborted)
+  {
+    run.status.aborted = true;
+    return "transport aborted";
+  }
+  if (!transport.status.error.empty() || !transport.result.converged)
+  {
+    std::ostringstream msg;
+    msg << "transport: "
+        << (transport.status.error.empty() ? "not converged (relative error " +
+                std::to_string(transport.result.relativeError) + ")"
+                                           : transport.status.error);
+    return msg.str();
+  }
+  CompositionOptions compositionOptions = options.composition;
+  compositionOptions.correctAreas = false;
+  compositionOptions.progress = keepGoing;
+  const CompositionResult composed = composeWithInverseTransport(mesh, run.startUv,
+    run.conformal.boundaryLoop, diracs, inverseTransportOfDiracs(diracs, transport),
+    compositionOptions);
+  if (!composed.status.ok() || composed.flippedTriangles > 0)
+  {
+    run.status.aborted = composed.status.aborted;
+    return "composition: " +
+      (composed.status.error.empty() ? std::to_string(composed.flippedTriangles) +
+            " triangle(s) stay flipped"
+                                     : composed.status.error);
+  }
+  run.startUv = composed.uv;
+  std::vector<double> perPoint;
+  computeAreaDensity(mesh, run.startUv, run.startDensity, perPoint);
+  return {};
+}
+
+// The map the last transport starts from (run.startUv, run.startDensity): the conformal map,
+// moved by staged transports while its density spans more than CrowdedDensityRange. Sets
+// run.sampling.status when a stage fails.
+void transportInStages(const AreaPreservingOptions& options, AreaPreservingResult& run)
+{
+  run.startUv = run.conformal.map.uv;
+  run.startDensity = run.conformal.areaDensityPerTriangle;
+  const auto keepGoing = [&options](double)
+  { return !options.progress || options.progress("sampling", SamplingRange.start); };
+  while (rangeOf(run.startDensity) > CrowdedDensityRange && run.status.ok())
+  {
+    if (run.transportStages == MaximumTransportStages ||
+      checkDensityValues(run.startDensity, "cell") != "")
+    {
+      break; // the last transport says what it can
+    }
+    const double range = rangeOf(run.startDensity);
+    const std::string error = transportStage(options, run, keepGoing);
+    if (run.status.aborted)
+    {
+      run.sampling.status.aborted = true;
+      return;
+    }
+    if (!error.empty())
+    {
+      std::ostringstream msg;
+      msg << "The conformal map crowds part of the surface (its area density spans " << range
+          << ": a long protrusion such as a finger, a limb or a tail), and stage "
+          << run.transportStages + 1
+          << " of the staged transport that widens it failed in its " << error
+          << ". Cut the surface open closer to the protrusion, or map its parts separately.";
+      run.sampling.status.error = msg.str();
+      return;
+    }
+    ++run.transportStages;
+  }
+}
 
 // What the composite adds to its stages' warnings: the two ways the map can still be off.
 // `where`: "in the disk" or "on the sphere".
@@ -334,11 +459,16 @@ AreaPreservingResult parameterizeDisk(
     },
     [&]
     {
-      sample(options, run,
+      transportInStages(options, run);
+      if (!run.sampling.status.ok())
+      {
+        return;
+      }
+      sample(options, run, run.startDensity,
         [&](const SamplerOptions& samplerOptions)
         {
-          return runSamplingStage(run.conformal.map.uv, run.conformal.surface.mesh.triangles, {},
-            run.conformal.areaDensityPerTriangle, samplerOptions);
+          return runSamplingStage(run.startUv, run.conformal.surface.mesh.triangles, {},
+            run.startDensity, samplerOptions);
         });
     },
     [&](const OTOptions& transportOptions)
@@ -418,7 +548,7 @@ SphereParameterizationResult parameterizeSphere(
     },
     [&]
     {
-      sample(options, run,
+      sample(options, run, run.conformal.areaDensityPerTriangle,
         [&](const SamplerOptions& samplerOptions)
         {
           return runSphereSamplingStage(run.conformal.map.sphere,

@@ -49,6 +49,12 @@ struct AreaPreservingResult
   std::vector<Vec2> diracs;
   std::vector<double> masses;
   int droppedSamples = 0;
+  // The map the (last) transport starts from, with its area density per triangle: the conformal
+  // map, or for a crowded surface the map after `transportStages` staged transports
+  // (parameterizeDisk).
+  std::vector<Vec2> startUv;
+  std::vector<double> startDensity;
+  int transportStages = 0;
   TransportStage transport;
   std::vector<Vec2> sampleImages; // T^-1 of each Dirac
   CompositionResult composition;
