@@ -60,6 +60,15 @@ Kernel::Point_3 liftedPoint(const Vec3& y, const Height& psi)
   return Kernel::Point_3(s * y.x, s * y.y, s * y.z);
 }
 
+// False when a lifted point over- or underflowed (a Newton trial far from the solution): the
+// exact predicates cannot take infinite or NaN coordinates (CGAL asserts; found by the fuzzer,
+// transport-sphere seed 2 case 3294), and points collapsed to the origin have no hull.
+bool finiteAndNonZero(const Kernel::Point_3& p)
+{
+  return std::isfinite(p.x()) && std::isfinite(p.y()) && std::isfinite(p.z()) &&
+    (p.x() != 0.0 || p.y() != 0.0 || p.z() != 0.0);
+}
+
 // The two hull triangles at the edge opposite corner j of triangle f: f = (c, a, b) and
 // g = (d, b, a), d at corner k of g.
 struct EdgeQuad
@@ -215,9 +224,19 @@ bool SphericalPowerDiagram::build(const std::vector<Vec3>& diracs, const std::ve
   this->Diracs = diracs;
   this->Psi = psi;
   std::vector<IndexedPoint> points(n);
+  bool representable = true;
   for (int i = 0; i < n; ++i)
   {
     points[i] = { liftedPoint(diracs[i], psi[i]), i };
+    representable = representable && finiteAndNonZero(points[i].first);
+  }
+  if (!representable)
+  {
+    this->Triangles.clear();
+    this->Across.clear();
+    this->Offsets.assign(n + 1, 0);
+    this->HiddenCount = n;
+    return false;
   }
   CGAL::spatial_sort(points.begin(), points.end(),
     CGAL::Spatial_sort_traits_adapter_3<Kernel, CGAL::First_of_pair_property_map<IndexedPoint>>());
@@ -271,16 +290,18 @@ bool SphericalPowerDiagram::buildFrom(const SphericalPowerDiagram& previous,
     return this->build(diracs, psi);
   }
   std::vector<Kernel::Point_3> points(n);
-#pragma omp parallel for schedule(static)
+  int unrepresentable = 0;
+#pragma omp parallel for schedule(static) reduction(+ : unrepresentable)
   for (int i = 0; i < n; ++i)
   {
     points[i] = liftedPoint(diracs[i], psi[i]);
+    unrepresentable += !finiteAndNonZero(points[i]);
   }
   this->Triangles = previous.Triangles;
   this->Across = previous.Across;
   this->Diracs = diracs;
   this->Psi = psi;
-  if (!flipToHull(points, this->Triangles, this->Across))
+  if (unrepresentable > 0 || !flipToHull(points, this->Triangles, this->Across))
   {
     this->Triangles.clear();
     this->Across.clear();

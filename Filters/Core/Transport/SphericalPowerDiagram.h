@@ -19,7 +19,8 @@ class SphericalPowerDiagram
 {
 public:
   // False when the origin is not strictly inside the hull of the p_i (the cells do not cover
-  // the sphere: every Dirac lies in one closed hemisphere).
+  // the sphere: every Dirac lies in one closed hemisphere), or when a p_i = y_i e^-psi_i over-
+  // or underflows (the diagram is then empty, every Dirac hidden; buildFrom too).
   bool build(const std::vector<Vec3>& diracs, const std::vector<Height>& psi);
   // The same diagram found by flipping the hull of previous (the same Diracs at other heights,
   // none hidden) until it is convex: a Newton step changes few edges. When the flips get stuck,

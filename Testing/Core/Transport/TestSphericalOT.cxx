@@ -184,6 +184,28 @@ TEST(SphericalPowerDiagram, FlipsStopWhenADiracSinksInsideTheHull)
   EXPECT_GT(flipped.hiddenCount(), 0);
 }
 
+// A Newton trial far from the solution can lift a Dirac to y e^-psi = infinity or 0 (the fuzzer's
+// transport-sphere seed 2 case 3294: CGAL's exact predicates asserted on infinite coordinates,
+// inside an OpenMP region, which terminated the process): both builds refuse such heights with
+// every Dirac hidden, so the trial is rejected.
+TEST(SphericalPowerDiagram, HeightsBeyondDoublePrecisionAreRefused)
+{
+  const int n = 500;
+  const std::vector<Vec3> diracs = randomSphere(n, 5);
+  std::vector<Height> psi(n, Height(0.0L));
+  SphericalPowerDiagram previous;
+  ASSERT_TRUE(previous.build(diracs, psi));
+  for (long double extreme : { -1000.0L, 1000.0L })
+  {
+    psi[3] = Height(extreme); // e^1000 overflows, e^-1000 underflows to 0
+    SphericalPowerDiagram fresh, flipped;
+    EXPECT_FALSE(fresh.build(diracs, psi));
+    EXPECT_EQ(fresh.hiddenCount(), n);
+    EXPECT_FALSE(flipped.buildFrom(previous, diracs, psi));
+    EXPECT_GT(flipped.hiddenCount(), 0);
+  }
+}
+
 // Smooth masses (four bumps over a floor, contrast about 1e4) vary little from a Dirac to its
 // neighbours: the coarse-to-fine start pays. Masses drawn at random per Dirac do not: the start
 // declines them and the solve is the Voronoi start's, bit for bit.
