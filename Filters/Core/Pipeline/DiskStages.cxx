@@ -292,6 +292,11 @@ SamplingStage runSamplingStage(const std::vector<Vec2>& points,
     status.error = "The domain is not supported: " + error + ".";
     return stage;
   }
+  if (options.progress && !options.progress(0.0)) // the density's search trees took a while
+  {
+    status.aborted = true;
+    return stage;
+  }
   SamplerResult& result = stage.result;
   try
   {
