@@ -64,6 +64,7 @@ struct Row
   bool ok;
   int checks[StageCount];
   double longestGap[StageCount]; // seconds between two progress checks, by the later's stage
+  double gapFrom[StageCount], gapTo[StageCount]; // the pipeline's progress at its two ends
   double conformal, sampler, transport, composition, total, peak;
   int samples, iterations, converged, sweeps;
   double relativeError, interpolatedArea, area, areaMax, angle;
@@ -111,26 +112,41 @@ Row run(const TriangleSoup& mesh, AreaPreservingOptions options)
 {
   using Clock = std::chrono::steady_clock;
   int checks[StageCount] = {};
-  double longest[StageCount] = {};
+  double longest[StageCount] = {}, from[StageCount] = {}, to[StageCount] = {};
   Clock::time_point last = Clock::now();
   int lastStage = 0;
-  options.progress = [&](const char* stage, double)
+  double lastFraction = 0.0;
+  options.progress = [&](const char* stage, double fraction)
   {
     const Clock::time_point now = Clock::now();
     const int k = stageIndex(stage);
     ++checks[k];
-    longest[k] = std::max(longest[k], std::chrono::duration<double>(now - last).count());
+    const double gap = std::chrono::duration<double>(now - last).count();
+    if (gap > longest[k])
+    {
+      longest[k] = gap;
+      from[k] = lastFraction;
+      to[k] = fraction;
+    }
     last = now;
     lastStage = k;
+    lastFraction = fraction;
     return true;
   };
   Row row = chooseDomain(mesh) == Domain::Sphere ? rowOf(parameterizeSphere(mesh, options))
                                                 : rowOf(parameterizeDisk(mesh, options));
   // From the last check to the end: the composition's figures, counted as the last stage's.
-  longest[lastStage] =
-    std::max(longest[lastStage], std::chrono::duration<double>(Clock::now() - last).count());
+  const double tail = std::chrono::duration<double>(Clock::now() - last).count();
+  if (tail > longest[lastStage])
+  {
+    longest[lastStage] = tail;
+    from[lastStage] = lastFraction;
+    to[lastStage] = 1.0;
+  }
   std::copy(checks, checks + StageCount, row.checks);
   std::copy(longest, longest + StageCount, row.longestGap);
+  std::copy(from, from + StageCount, row.gapFrom);
+  std::copy(to, to + StageCount, row.gapTo);
   return row;
 }
 
@@ -196,6 +212,15 @@ int main(int argc, char** argv)
       subdivide = std::max(0, std::atoi(argv[++i]));
     else if (!std::strcmp(argv[i], "--progress-gaps"))
       progressGaps = true;
+    else if (argv[i][0] == '-')
+    {
+      std::fprintf(stderr,
+        "unknown option %s\nusage: otparam_param_benchmark [--repeat R] [--samples N] "
+        "[--correction-decrease F] [--no-correction] [--subdivide K] [--progress-gaps] "
+        "[mesh ...]\n",
+        argv[i]);
+      return 2;
+    }
     else
       meshes.push_back(argv[i]);
   }
@@ -213,7 +238,13 @@ int main(int argc, char** argv)
               "| MiB | its | rel. error | flips interp/final | area interp | area | area max | "
               "angle | sweeps | CGAL IA area | CGAL IA s |\n"
               "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
-  std::vector<std::pair<std::string, Row>> gaps;
+  struct Gaps
+  {
+    std::string mesh;
+    std::size_t points;
+    Row row;
+  };
+  std::vector<Gaps> gaps;
   for (const auto& name : meshes)
   {
     TriangleSoup mesh = testing::readSoup(testing::sharedMesh(name));
@@ -235,7 +266,7 @@ int main(int argc, char** argv)
     if (rows.empty())
       continue;
     const Row& last = rows.back();
-    gaps.emplace_back(name, last);
+    gaps.push_back({ name, mesh.points.size(), last });
     const Reference* ref = nullptr;
     for (const auto& r : References)
       if (name == r.mesh)
@@ -256,15 +287,17 @@ int main(int argc, char** argv)
   if (progressGaps)
   {
     std::printf("\nAbort latency: per stage, the progress checks (where AbortExecute is read) and the "
-                "longest time between two of them, seconds (last run)\n\n"
+                "longest time between two of them, seconds, with the pipeline's progress at its two "
+                "ends (last run)\n\n"
                 "| mesh | vertices | conformal | sampling | transport | composition |\n"
                 "|---|---|---|---|---|---|\n");
-    for (const auto& [name, row] : gaps)
+    for (const auto& [name, points, row] : gaps)
     {
-      std::printf("| %s | %s |", name.c_str(), subdivide > 0 ? "subdivided" : "");
+      std::printf("| %s | %zu |", name.c_str(), points);
       for (int k = 0; k < StageCount; ++k)
       {
-        std::printf(" %d checks, %.2f s |", row.checks[k], row.longestGap[k]);
+        std::printf(" %d checks, %.2f s (%.3f-%.3f) |", row.checks[k], row.longestGap[k],
+          row.gapFrom[k], row.gapTo[k]);
       }
       std::printf("\n");
     }

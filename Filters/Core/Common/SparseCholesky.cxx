@@ -30,20 +30,34 @@ struct SparseCholesky::Cholmod
 SparseCholesky::SparseCholesky() = default;
 SparseCholesky::~SparseCholesky() = default;
 
-bool SparseCholesky::compute(const SparseMatrix& lower)
+namespace
+{
+template <typename Factorization>
+bool analyzeThenFactor(Factorization& factorization, const SparseCholesky::SparseMatrix& lower,
+  const std::function<bool()>& keepGoing)
+{
+  factorization.analyzePattern(lower);
+  if (factorization.info() != Eigen::Success || (keepGoing && !keepGoing()))
+  {
+    return false;
+  }
+  factorization.factorize(lower);
+  return factorization.info() == Eigen::Success;
+}
+} // namespace
+
+bool SparseCholesky::compute(const SparseMatrix& lower, const std::function<bool()>& keepGoing)
 {
   this->Size = static_cast<int>(lower.rows());
 #ifdef OTPARAM_HAVE_CHOLMOD
   if (this->Size >= CholmodThreshold)
   {
     this->Supernodal = std::make_unique<Cholmod>();
-    this->Supernodal->factor.compute(lower);
-    return this->Supernodal->factor.info() == Eigen::Success;
+    return analyzeThenFactor(this->Supernodal->factor, lower, keepGoing);
   }
   this->Supernodal.reset();
 #endif
-  this->Ldlt.compute(lower);
-  return this->Ldlt.info() == Eigen::Success;
+  return analyzeThenFactor(this->Ldlt, lower, keepGoing);
 }
 
 Eigen::MatrixXd SparseCholesky::solve(const Eigen::MatrixXd& b) const

@@ -6,6 +6,7 @@
 #include <Eigen/Sparse>
 #include <Eigen/SparseCholesky>
 
+#include <functional>
 #include <memory>
 
 namespace otparam
@@ -25,8 +26,10 @@ public:
   SparseCholesky(const SparseCholesky&) = delete;
   SparseCholesky& operator=(const SparseCholesky&) = delete;
 
-  // Returns false when the matrix is not numerically positive definite.
-  bool compute(const SparseMatrix& lower);
+  // Returns false when the matrix is not numerically positive definite, or when `keepGoing`
+  // (asked between the ordering and the numeric factorization, the two long steps that cannot
+  // be interrupted inside) says stop.
+  bool compute(const SparseMatrix& lower, const std::function<bool()>& keepGoing = {});
   Eigen::MatrixXd solve(const Eigen::MatrixXd& b) const;
   int size() const { return Size; }
   // Eigen's solve keeps no state between calls; CHOLMOD's shares a workspace.

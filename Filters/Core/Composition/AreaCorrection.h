@@ -339,9 +339,9 @@ constexpr int PolishSweeps = 50; // measured on hand_choi_53k: the largest error
 
 // Step 3's sweeps, for either domain: until the mean |log area ratio| (`mean(points)`) settles,
 // then the polishing of the worst. `report(fraction)` returns false to abort. Counts the sweeps
-// and leaves the final mean in `meanAbsLogAreaRatio`.
+// and leaves the final mean in `meanAbsLogAreaRatio`. Returns false when aborted.
 template <class Geometry, class Mean, class Report>
-void correctAreas(AreaCorrectionOn<Geometry>& correction,
+bool correctAreas(AreaCorrectionOn<Geometry>& correction,
   std::vector<typename Geometry::Point>& points, const CompositionOptions& options,
   const Mean& mean, const Report& report, int& sweeps, double& meanAbsLogAreaRatio)
 {
@@ -359,8 +359,11 @@ void correctAreas(AreaCorrectionOn<Geometry>& correction,
     const bool settled = moved == 0 ||
       meanAbsLogAreaRatio - now < SweepsPerCheck * options.correctionRelativeDecrease * now;
     meanAbsLogAreaRatio = now;
-    if (settled ||
-      !report(0.3 + 0.6 * (sweep + 1.0) / std::max(1, options.maximumCorrectionSweeps)))
+    if (!report(0.3 + 0.6 * (sweep + 1.0) / std::max(1, options.maximumCorrectionSweeps)))
+    {
+      return false;
+    }
+    if (settled)
     {
       break;
     }
@@ -373,12 +376,17 @@ void correctAreas(AreaCorrectionOn<Geometry>& correction,
   for (int sweep = 0; sweep < std::min(options.maximumCorrectionSweeps, PolishSweeps); ++sweep)
   {
     ++sweeps;
-    if (correction.sweep(points) == 0 || !report(0.9))
+    if (correction.sweep(points) == 0)
     {
       break;
     }
+    if (!report(0.9))
+    {
+      return false;
+    }
   }
   meanAbsLogAreaRatio = mean(points);
+  return true;
 }
 
 } // namespace composition

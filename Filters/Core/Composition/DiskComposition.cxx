@@ -139,6 +139,7 @@ CompositionResult composeWithInverseTransport(const SurfaceMesh& surface,
   result.meanAbsLogAreaRatio = result.meanAbsLogAreaRatioInterpolated;
   if (!report(0.3))
   {
+    result.uv.clear(); // an aborted run has no map
     return result;
   }
 
@@ -146,11 +147,15 @@ CompositionResult composeWithInverseTransport(const SurfaceMesh& surface,
   if (options.correctAreas)
   {
     AreaCorrection correction(surface, boundaryLoop, stars, surfaceFraction);
-    correctAreas(
-      correction, result.uv, options,
-      [&](const std::vector<Vec2>& uv)
-      { return meanAbsLogAreaRatio(surface.triangles, uv, surfaceFraction); },
-      report, result.correctionSweeps, result.meanAbsLogAreaRatio);
+    if (!correctAreas(
+          correction, result.uv, options,
+          [&](const std::vector<Vec2>& uv)
+          { return meanAbsLogAreaRatio(surface.triangles, uv, surfaceFraction); },
+          report, result.correctionSweeps, result.meanAbsLogAreaRatio))
+    {
+      result.uv.clear(); // an aborted run has no map
+      return result;
+    }
   }
   result.secondsCorrection = seconds(start);
   result.flippedTriangles =

@@ -217,6 +217,7 @@ SphereCompositionResult composeOnSphere(const SurfaceMesh& surface,
   result.meanAbsLogAreaRatio = sphereMeanAbsLogAreaRatio(surface, result.sphere);
   if (!report(0.3))
   {
+    result.sphere.clear(); // an aborted run has no map
     result.status.aborted = true;
     return result;
   }
@@ -228,10 +229,15 @@ SphereCompositionResult composeOnSphere(const SurfaceMesh& surface,
     const std::vector<double> surfaceFraction = composition::surfaceAreaFractions(surface);
     composition::AreaCorrectionOn<composition::SphereGeometry> correction(
       surface, {}, stars, surfaceFraction);
-    composition::correctAreas(
-      correction, result.sphere, options,
-      [&](const std::vector<Vec3>& sphere) { return sphereMeanAbsLogAreaRatio(surface, sphere); },
-      report, result.correctionSweeps, result.meanAbsLogAreaRatio);
+    if (!composition::correctAreas(
+          correction, result.sphere, options,
+          [&](const std::vector<Vec3>& sphere) { return sphereMeanAbsLogAreaRatio(surface, sphere); },
+          report, result.correctionSweeps, result.meanAbsLogAreaRatio))
+    {
+      result.sphere.clear(); // an aborted run has no map
+      result.status.aborted = true;
+      return result;
+    }
   }
   result.secondsCorrection = secondsSince(t0);
   result.flippedTriangles =

@@ -82,10 +82,10 @@ Vec3 fromEigen(const Eigen::Vector3d& v)
 }
 
 // The harmonic extension: L_FF X_F = source_F - L_FB X_B for the free rows F (fixed[v] == 0),
-// the fixed rows of X given; both columns at once. False when the factorization fails or the
-// solution is not finite.
+// the fixed rows of X given; both columns at once. False when the factorization fails, the
+// solution is not finite or `keepGoing` (asked inside the factorization) says stop.
 bool solveDirichlet(const SparseMatrix& L, const std::vector<char>& fixed, Eigen::MatrixXd& X,
-  const Eigen::MatrixXd* source = nullptr)
+  const std::function<bool()>& keepGoing, const Eigen::MatrixXd* source = nullptr)
 {
   const int n = static_cast<int>(L.rows());
   std::vector<int> local(n, -1);
@@ -136,7 +136,7 @@ bool solveDirichlet(const SparseMatrix& L, const std::vector<char>& fixed, Eigen
   SparseMatrix LFF(nf, nf);
   LFF.setFromTriplets(lower.begin(), lower.end());
   SparseCholesky cholesky;
-  if (!cholesky.compute(LFF))
+  if (!cholesky.compute(LFF, keepGoing))
   {
     return false;
   }
@@ -402,9 +402,9 @@ ConformalSphereMapResult computeWithLaplacian(
     }
     fixed[gauge] = 1;
   }
-  if (!solveDirichlet(L, fixed, X, &dipole))
+  if (!solveDirichlet(L, fixed, X, [&] { return keepGoing(0.25); }, &dipole))
   {
-    result.status.error = factorError;
+    result.status.error = result.status.aborted ? "" : factorError;
     return result;
   }
   result.secondsFactorization = secondsSince(t0);
@@ -522,9 +522,9 @@ ConformalSphereMapResult computeWithLaplacian(
     X(v, 0) = dot(sphere[v], e1) / denominator;
     X(v, 1) = dot(sphere[v], e2) / denominator;
   }
-  if (result.fixedPoints > 0 && !solveDirichlet(L, fixed, X))
+  if (result.fixedPoints > 0 && !solveDirichlet(L, fixed, X, [&] { return keepGoing(0.6); }))
   {
-    result.status.error = factorError;
+    result.status.error = result.status.aborted ? "" : factorError;
     return result;
   }
   for (int v = 0; v < nv && result.fixedPoints > 0; ++v)

@@ -158,6 +158,12 @@ ConformalStage runConformalStage(const TriangleSoup& soup, const ConformalStageO
   {
     return stage;
   }
+  // The mesh checks take about 2 s at 1e6 points: an abort is honoured before the map.
+  if (options.map.progress && !options.map.progress(0.0))
+  {
+    status.aborted = true;
+    return stage;
+  }
   const SurfaceMesh& mesh = stage.surface.mesh;
   try
   {

@@ -23,6 +23,12 @@ SphereConformalStage runSphereConformalStage(
     status.error = "The input is not a closed genus-0 triangle surface: " + error + ".";
     return stage;
   }
+  // The mesh checks take about 2 s at 1e6 points: an abort is honoured before the map.
+  if (options.progress && !options.progress(0.0))
+  {
+    status.aborted = true;
+    return stage;
+  }
   const SurfaceMesh& mesh = stage.surface.mesh;
   try
   {

@@ -178,4 +178,21 @@ bool refineToTargetCount(const SamplerOptions& options, double gradedArea, doubl
   return true;
 }
 
+RefinementAbortCheck::RefinementAbortCheck(const std::function<bool(long long)>& keepGoing)
+  : KeepGoing(keepGoing)
+  , Last(std::chrono::steady_clock::now())
+{
+}
+
+bool RefinementAbortCheck::stepDone(long long count)
+{
+  const auto now = std::chrono::steady_clock::now();
+  if (now - this->Last < std::chrono::milliseconds(100))
+  {
+    return true;
+  }
+  this->Last = now;
+  return this->KeepGoing(count);
+}
+
 } // namespace otparam

@@ -6,6 +6,7 @@
 #include "Common/Geometry.h"
 #include "Common/Status.h"
 
+#include <chrono>
 #include <functional>
 #include <string>
 #include <vector>
@@ -107,6 +108,20 @@ std::string runawayRefinementError(
 // result.status.error says so).
 bool refineToTargetCount(const SamplerOptions& options, double gradedArea, double tolerance,
   const std::function<double(double epsilon, double runTarget)>& refine, SamplerResultBase& result);
+
+// A refinement step's abort check: asks `keepGoing(count)` once 0.1 s has passed since it last
+// did. A step costs from a microsecond (a small density mesh) to milliseconds (bounding the
+// density over a large triangle of a 1e6-triangle mesh), so no fixed step count suits both.
+class RefinementAbortCheck
+{
+public:
+  explicit RefinementAbortCheck(const std::function<bool(long long)>& keepGoing);
+  bool stepDone(long long count);
+
+private:
+  const std::function<bool(long long)>& KeepGoing;
+  std::chrono::steady_clock::time_point Last;
+};
 
 } // namespace otparam
 

@@ -169,11 +169,16 @@ public:
       const VertexHandle v = insert(seeds[i], near, hints.empty() ? -1 : hints[i]);
       near = v != VertexHandle() ? v->face() : near;
     }
+    RefinementAbortCheck abortCheck(keepGoing);
+    const auto stepDone = [&] { return abortCheck.stepDone(Triangulation.number_of_vertices()); };
     for (auto f = Triangulation.all_faces_begin(); f != Triangulation.all_faces_end(); ++f)
     {
       consider(f);
+      if (!stepDone())
+      {
+        return false;
+      }
     }
-    long long insertions = 0;
     while (!Queue.empty())
     {
       if (static_cast<long long>(Triangulation.number_of_vertices()) >= Cap)
@@ -193,12 +198,12 @@ public:
         continue;
       }
       refine(f);
-      if (++insertions % 4096 == 0 && !keepGoing(Triangulation.number_of_vertices()))
+      if (!stepDone())
       {
         return false;
       }
     }
-    return true;
+    return keepGoing(Triangulation.number_of_vertices());
   }
 
   DT& triangulation() { return Triangulation; } // diagramOf numbers its faces
@@ -796,9 +801,9 @@ SphericalSamplerResult sampleSphere(const std::vector<Vec3>& spherePoints,
       result.status.warnings.push_back(warning);
     }
   }
-  if (options.progress)
+  if (options.progress && !options.progress(1.0))
   {
-    options.progress(1.0);
+    result.status.aborted = true;
   }
   return result;
 }

@@ -96,6 +96,47 @@ TEST(Pipeline, RefusesWhatWouldNotFitInMemory)
   EXPECT_TRUE(parameterizeSphere(sphere, options).status.ok());
 }
 
+// Whichever progress check says stop (ParaView's AbortExecute), the run ends there: aborted, no
+// error, no map. Every check of both pipelines is tried on small surfaces, so a check that is
+// not honoured (the run going on to a result) fails here.
+template <class Parameterize, class MapOf>
+void expectEveryAbortHonoured(
+  const TriangleSoup& surface, const Parameterize& parameterize, const MapOf& mapOf)
+{
+  AreaPreservingOptions options;
+  options.sampling.numberOfSamples = 300;
+  int checks = 0;
+  options.progress = [&](const char*, double) { return ++checks, true; };
+  ASSERT_TRUE(parameterize(surface, options).status.ok());
+  ASSERT_GT(checks, 20);
+  for (int stopAt = 1; stopAt <= checks; ++stopAt)
+  {
+    int asked = 0;
+    std::string stage;
+    options.progress = [&](const char* name, double)
+    {
+      stage = name;
+      return ++asked < stopAt;
+    };
+    const auto r = parameterize(surface, options);
+    EXPECT_TRUE(r.status.aborted) << "check " << stopAt << " of " << checks << " (" << stage << ")";
+    EXPECT_EQ(r.status.error, "") << "check " << stopAt;
+    EXPECT_TRUE(mapOf(r).empty()) << "check " << stopAt << " (" << stage << ")";
+    EXPECT_EQ(asked, stopAt) << "asked again after an abort, check " << stopAt << " (" << stage << ")";
+  }
+}
+
+TEST(Pipeline, AbortAtAnyCheckIsHonoured)
+{
+  expectEveryAbortHonoured(testing::readSoup(testing::sharedMesh("hemisphere_2k.obj")),
+    [](const TriangleSoup& s, const AreaPreservingOptions& o) { return parameterizeDisk(s, o); },
+    [](const AreaPreservingResult& r) { return r.composition.uv; });
+  expectEveryAbortHonoured(
+    toSoup(otparam::testing::convexHullMesh(otparam::testing::fibonacciSphere(500))),
+    [](const TriangleSoup& s, const AreaPreservingOptions& o) { return parameterizeSphere(s, o); },
+    [](const SphereParameterizationResult& r) { return r.composition.sphere; });
+}
+
 // The surface is the unit sphere with its points crowded toward a pole: both maps are
 // rotations.
 TEST(SphereParameterization, CrowdedRoundSphereMapsByARotation)
