@@ -238,10 +238,12 @@ public:
     }
   }
 
-  // Factors the Dirichlet (interior) and the Neumann (one boundary vertex pinned) Laplacians,
-  // asking `keepGoing` between the steps. One after the other: side by side, each on OpenBLAS's
-  // default threads, they oversubscribed the two cores (1.09M points: 7.8 s against 6.6 s in
-  // turn), and OpenBLAS's thread count cannot be changed safely at run time (design.md).
+  // Factors the Dirichlet (interior) and the Neumann (one boundary vertex pinned) Laplacians.
+  // Eigen's factorizations (below CholmodThreshold) run side by side, one per core; CHOLMOD's
+  // run one after the other, asking `keepGoing` between the steps: side by side, each on
+  // OpenBLAS's default threads, they oversubscribed the two cores (1.09M points: 7.8 s against
+  // 6.6 s in turn), and OpenBLAS's thread count cannot be changed safely at run time
+  // (design.md).
   bool factor(const std::function<bool()>& keepGoing)
   {
     std::vector<Eigen::Triplet<double>> interior, pinned;
@@ -273,8 +275,20 @@ public:
     SparseMatrix LII(NI, NI), LN(N - 1, N - 1);
     LII.setFromTriplets(interior.begin(), interior.end());
     LN.setFromTriplets(pinned.begin(), pinned.end());
-    return (NI == 0 || Dirichlet.compute(LII, keepGoing)) && keepGoing() &&
-      Neumann.compute(LN, keepGoing);
+    if (N - 1 >= SparseCholesky::CholmodThreshold)
+    {
+      return (NI == 0 || Dirichlet.compute(LII, keepGoing)) && keepGoing() &&
+        Neumann.compute(LN, keepGoing);
+    }
+    bool dirichletOk = true, neumannOk = true;
+#pragma omp parallel sections num_threads(2)
+    {
+#pragma omp section
+      dirichletOk = NI == 0 || Dirichlet.compute(LII);
+#pragma omp section
+      neumannOk = Neumann.compute(LN);
+    }
+    return dirichletOk && neumannOk;
   }
 
   // u with L u = rhs, u = 0 at the pinned vertex; rhs must sum to zero.
