@@ -58,13 +58,17 @@ public:
   }
 
   // Calls consider(item, best) for every item whose box meets [lo, hi] and whose value
-  // exceeds best; consider may raise best.
-  template <typename Consider>
-  void maximize(Vec2 lo, Vec2 hi, double& best, const Consider& consider) const
+  // exceeds best; consider may raise best. Subtrees whose box `mayMeet(boxLo, boxHi)` rules out
+  // are skipped too (a query region thinner than its bounding box: a long thin triangle's box
+  // covers much of the domain, and without this the first refinement steps on a 2e6-triangle
+  // density took 1.6 s each).
+  template <typename Consider, typename MayMeet>
+  void maximize(
+    Vec2 lo, Vec2 hi, double& best, const Consider& consider, const MayMeet& mayMeet) const
   {
     if (!this->Nodes.empty())
     {
-      this->maximize(0, lo, hi, best, consider);
+      this->maximize(0, lo, hi, best, consider, mayMeet);
     }
   }
 
@@ -171,11 +175,12 @@ private:
     this->forOverlapping(node.right, lo, hi, visit);
   }
 
-  template <typename Consider>
-  void maximize(int index, Vec2 lo, Vec2 hi, double& best, const Consider& consider) const
+  template <typename Consider, typename MayMeet>
+  void maximize(int index, Vec2 lo, Vec2 hi, double& best, const Consider& consider,
+    const MayMeet& mayMeet) const
   {
     const Node& node = this->Nodes[index];
-    if (node.maximum <= best || !overlaps(node, lo, hi))
+    if (node.maximum <= best || !overlaps(node, lo, hi) || !mayMeet(node.lo, node.hi))
     {
       return;
     }
@@ -199,8 +204,8 @@ private:
     {
       std::swap(first, second);
     }
-    this->maximize(first, lo, hi, best, consider);
-    this->maximize(second, lo, hi, best, consider);
+    this->maximize(first, lo, hi, best, consider, mayMeet);
+    this->maximize(second, lo, hi, best, consider, mayMeet);
   }
 
   std::vector<Item> Items;

@@ -480,20 +480,41 @@ double DensityField::maxInsideTriangle(Vec2 a, Vec2 b, Vec2 c) const
   double largest = value((1.0 / 3.0) * (a + b + c));
   const Vec2 lo = { std::min({ a.x, b.x, c.x }), std::min({ a.y, b.y, c.y }) };
   const Vec2 hi = { std::max({ a.x, b.x, c.x }), std::max({ a.y, b.y, c.y }) };
+  // A box lies outside the (counter-clockwise) triangle when even its corner furthest to the
+  // left of some edge is on the edge's right, by more than rounding.
+  const auto mayMeet = [&](Vec2 boxLo, Vec2 boxHi)
+  {
+    for (const auto& [p, q] : { std::pair{ a, b }, std::pair{ b, c }, std::pair{ c, a } })
+    {
+      const Vec2 d = q - p;
+      const Vec2 corner = { d.y > 0.0 ? boxLo.x : boxHi.x, d.x > 0.0 ? boxHi.y : boxLo.y };
+      const Vec2 r = corner - p;
+      const double slack =
+        1e-12 * (std::abs(d.x) + std::abs(d.y)) * (std::abs(r.x) + std::abs(r.y));
+      if (cross(d, r) < -slack)
+      {
+        return false;
+      }
+    }
+    return true;
+  };
   if (PerTriangle.empty())
   {
-    PointTree.maximize(lo, hi, largest,
+    PointTree.maximize(
+      lo, hi, largest,
       [&](int item, double& best)
       {
         if (inside(Points[PointTreeIds[item]], a, b, c, 0.0))
         {
           best = PerPoint[PointTreeIds[item]];
         }
-      });
+      },
+      mayMeet);
   }
   else
   {
-    TriangleTree.maximize(lo, hi, largest,
+    TriangleTree.maximize(
+      lo, hi, largest,
       [&](int t, double& best)
       {
         const Triangle& tri = Triangles[t];
@@ -501,7 +522,8 @@ double DensityField::maxInsideTriangle(Vec2 a, Vec2 b, Vec2 c) const
         {
           best = PerTriangle[t];
         }
-      });
+      },
+      mayMeet);
   }
   return largest;
 }
