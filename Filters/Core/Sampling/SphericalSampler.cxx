@@ -427,8 +427,11 @@ constexpr double LightCellFraction = 0.65;
 constexpr int PlainStepsAfterRemoval = 4;
 constexpr int RemovalRounds = 3;
 constexpr double RepairAngleSlackDegrees = 0.4;
-void relax(const SphericalDensityField& field, double power, bool equalizeMass, int steeredSteps,
-  int plainSteps, std::vector<Vec3>& samples, std::vector<int>& hints)
+// Returns false when `keepGoing` (asked before each step: a step integrates over the whole
+// density mesh, ~0.5 s at 1.5e6 triangles) says stop.
+bool relax(const SphericalDensityField& field, double power, bool equalizeMass, int steeredSteps,
+  int plainSteps, std::vector<Vec3>& samples, std::vector<int>& hints,
+  const std::function<bool()>& keepGoing)
 {
   const long long n = static_cast<long long>(samples.size());
   std::vector<Height> psi(n, Height(0.0L));
@@ -438,6 +441,10 @@ void relax(const SphericalDensityField& field, double power, bool equalizeMass, 
   double previousSpread = std::numeric_limits<double>::infinity();
   for (int step = 0; step < steeredSteps + plainSteps; ++step)
   {
+    if (!keepGoing())
+    {
+      return false;
+    }
     const bool plainStep = step >= steeredSteps;
     if (plainStep)
     {
@@ -511,6 +518,7 @@ void relax(const SphericalDensityField& field, double power, bool equalizeMass, 
       break;
     }
   }
+  return true;
 }
 
 // Drops the samples whose Voronoi cell holds less than `fraction` of the mean mass, none next to
@@ -649,6 +657,11 @@ Candidate sampleRefined(
     const double s = grade(field.density()[t]);
     gradedArea += field.sphericalArea(static_cast<int>(t)) * s * s;
   }
+  if (options.progress && !options.progress(0.0))
+  {
+    result.status.aborted = true;
+    return {};
+  }
   std::unique_ptr<Refinement> refinement;
   const double target = static_cast<double>(options.numberOfSamples);
   double done = 0.0; // progress: the runs together refine about 2.2 times the target
@@ -682,18 +695,28 @@ Candidate sampleRefined(
   std::vector<Vec3> samples = refined.samples;
   std::vector<int> hints = refined.hints;
   const bool equalizeMass = options.mode == SamplingMode::Adaptive;
-  relax(field, power, equalizeMass, SteeredSteps, PlainSteps, samples, hints);
+  const auto keepGoing = [&]
+  {
+    result.status.aborted = options.progress && !options.progress(0.9);
+    return !result.status.aborted;
+  };
+  if (!relax(field, power, equalizeMass, SteeredSteps, PlainSteps, samples, hints, keepGoing))
+  {
+    return {};
+  }
   for (int round = 0; round < RemovalRounds; ++round)
   {
     if (!equalizeMass || removeLight(field, LightCellFraction, samples, hints) == 0)
     {
       break;
     }
-    relax(field, power, equalizeMass, 0, PlainStepsAfterRemoval, samples, hints);
+    if (!relax(field, power, equalizeMass, 0, PlainStepsAfterRemoval, samples, hints, keepGoing))
+    {
+      return {};
+    }
   }
-  if (options.progress && !options.progress(0.9))
+  if (!keepGoing())
   {
-    result.status.aborted = true;
     return {};
   }
   // Always the repaired samples: keeping the relaxed ones where the repair made the masses less
@@ -772,6 +795,11 @@ SphericalSamplerResult sampleSphere(const std::vector<Vec3>& spherePoints,
     return result;
   }
   result.densityIntegral = field->integral();
+  if (options.progress && !options.progress(0.0)) // the field's search structures took a while
+  {
+    result.status.aborted = true;
+    return result;
+  }
   const auto t0 = Clock::now();
   Candidate c = options.mode == SamplingMode::MeshVertices ? sampleMeshVertices(*field, result)
                                                            : sampleRefined(*field, options, result);
