@@ -184,6 +184,78 @@ TEST(TriangulatedSource, RejectsBadDomains)
   EXPECT_TRUE(makeTriangulatedSource(pts, { { 0, 1, 2 }, { 0, 2, 3 } }, {}, error)) << error;
 }
 
+// Domains of many points, whose hull is computed after Akl and Toussaint's filter: a grid
+// square (sides full of collinear points, two extreme directions per corner), an L of grid
+// cells, a fan of a 200-gon.
+TEST(TriangulatedSource, HullOfManyPoints)
+{
+  const auto grid = [](int n, bool notch, std::vector<Vec2>& pts, std::vector<Triangle>& tris)
+  {
+    for (int j = 0; j <= n; ++j)
+    {
+      for (int i = 0; i <= n; ++i)
+      {
+        pts.push_back({ static_cast<double>(i) / n, static_cast<double>(j) / n });
+      }
+    }
+    for (int j = 0; j < n; ++j)
+    {
+      for (int i = 0; i < n; ++i)
+      {
+        if (notch && i >= n / 2 && j >= n / 2)
+        {
+          continue;
+        }
+        const int v = j * (n + 1) + i;
+        tris.push_back({ v, v + 1, v + n + 2 });
+        tris.push_back({ v, v + n + 2, v + n + 1 });
+      }
+    }
+  };
+  const auto area = [](const std::vector<Vec2>& polygon)
+  {
+    double twice = 0.0;
+    for (size_t k = 0; k < polygon.size(); ++k)
+    {
+      twice += cross(polygon[k], polygon[(k + 1) % polygon.size()]);
+    }
+    return 0.5 * twice;
+  };
+  PowerCell everything;
+  everything.vertices = { { -10, -10 }, { 10, -10 }, { 10, 10 }, { -10, 10 } };
+  std::string error;
+
+  std::vector<Vec2> pts;
+  std::vector<Triangle> tris;
+  grid(30, false, pts, tris);
+  const auto square = makeTriangulatedSource(pts, tris, {}, error);
+  ASSERT_TRUE(square) << error;
+  const std::vector<Vec2> squareHull = square->clippedBoundary(everything, 0.1);
+  EXPECT_EQ(squareHull.size(), 4u);
+  EXPECT_NEAR(area(squareHull), 1.0, 1e-12);
+
+  pts.clear();
+  tris.clear();
+  grid(30, true, pts, tris);
+  EXPECT_FALSE(makeTriangulatedSource(pts, tris, {}, error));
+  EXPECT_NE(error.find("not convex"), std::string::npos) << error;
+
+  pts = { { 0.0, 0.0 } };
+  tris.clear();
+  const int sides = 200;
+  for (int k = 0; k < sides; ++k)
+  {
+    const double angle = 2.0 * 3.141592653589793 * k / sides;
+    pts.push_back({ std::cos(angle), std::sin(angle) });
+    tris.push_back({ 0, 1 + k, 1 + (k + 1) % sides });
+  }
+  const auto fan = makeTriangulatedSource(pts, tris, {}, error);
+  ASSERT_TRUE(fan) << error;
+  const std::vector<Vec2> fanHull = fan->clippedBoundary(everything, 0.1);
+  EXPECT_EQ(fanHull.size(), static_cast<size_t>(sides));
+  EXPECT_NEAR(area(fanHull), fan->totalMass(), 1e-12);
+}
+
 TEST(UnitDiskSource, VoronoiAreasMatchAPixelCount)
 {
   // Independent check of the clipped Voronoi cells: count pixel centres nearest to each site.
