@@ -554,6 +554,22 @@ bool relax(const DensityField& field, const SamplerOptions& options, std::vector
   return true;
 }
 
+// The relaxation and the abort check after it, for both sampling paths; false with the result's
+// status set (an error, or aborted) when either stops the run.
+bool relaxThenCheck(const DensityField& field, const SamplerOptions& options,
+  std::vector<Vec2>& samples, const std::vector<char>& onBoundary, SamplerResult& result)
+{
+  std::string error;
+  if (!relax(field, options, samples, onBoundary, error))
+  {
+    result.status.error = error;
+    result.status.aborted = error.empty();
+    return false;
+  }
+  result.status.aborted = options.progress && !options.progress(0.9);
+  return !result.status.aborted;
+}
+
 struct Candidate
 {
   std::vector<Vec2> samples;
@@ -1202,15 +1218,8 @@ void sampleSupport(
   }
   all.insert(all.end(), interior.begin(), interior.end());
   fixed.insert(fixed.end(), interior.size(), 0);
-  if (!relax(field, options, all, fixed, error))
+  if (!relaxThenCheck(field, options, all, fixed, result))
   {
-    result.status.error = error;
-    result.status.aborted = error.empty();
-    return;
-  }
-  if (options.progress && !options.progress(0.9))
-  {
-    result.status.aborted = true;
     return;
   }
   const std::vector<Vec2> relaxed(
@@ -1318,15 +1327,8 @@ void sampleConvex(
   // always relaxes: it is a sampling of the area).
   const std::vector<Vec2> refined = result.samples;
   std::vector<Vec2> relaxed = refined;
-  if (!relax(field, options, relaxed, onBoundary, error))
+  if (!relaxThenCheck(field, options, relaxed, onBoundary, result))
   {
-    result.status.error = error;
-    result.status.aborted = error.empty();
-    return;
-  }
-  if (options.progress && !options.progress(0.9))
-  {
-    result.status.aborted = true;
     return;
   }
   // Built after the relaxation's own source, with an abort check between: each takes ~0.35 s
