@@ -3,6 +3,7 @@
 #ifndef OTPARAM_COMPOSITION_COMPOSITIONOPTIONS_H
 #define OTPARAM_COMPOSITION_COMPOSITIONOPTIONS_H
 
+#include <cstddef>
 #include <functional>
 
 namespace otparam
@@ -16,6 +17,10 @@ struct CompositionOptions
   // this fraction of its value (or moves no vertex); then at most 50 more sweeps move only
   // the vertices that still have a triangle off by more than 5%.
   double correctionRelativeDecrease = 0.01;
+  // The figures (mean |log area ratio| before and after the correction) speak of the surface's
+  // first this many triangles, 0 = all: with holes filled, the input's own triangles come first
+  // and the fill after them (the fill is corrected with the rest, but is not the user's).
+  std::size_t measuredTriangles = 0;
   // Called with the fraction done; returning false aborts.
   std::function<bool(double)> progress;
 };

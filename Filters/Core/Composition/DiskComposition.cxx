@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <numeric>
 #include <tuple>
 
 namespace otparam
@@ -68,6 +69,29 @@ Vec2 boundaryArcMidpoint(const std::vector<Vec2>& cell)
   }
   return { std::cos(bestMiddle), std::sin(bestMiddle) };
 }
+
+namespace
+{
+// The mean |log area ratio| over the first `measured` triangles (0 = all), each triangle's
+// share renormalized over them.
+double measuredMeanAbsLogAreaRatio(const SurfaceMesh& surface, const std::vector<Vec2>& uv,
+  const std::vector<double>& surfaceFraction, std::size_t measured)
+{
+  if (measured == 0 || measured >= surface.triangles.size())
+  {
+    return meanAbsLogAreaRatio(surface.triangles, uv, surfaceFraction);
+  }
+  const std::vector<Triangle> triangles(
+    surface.triangles.begin(), surface.triangles.begin() + static_cast<long>(measured));
+  std::vector<double> fraction(surfaceFraction.begin(), surfaceFraction.begin() + static_cast<long>(measured));
+  const double total = std::accumulate(fraction.begin(), fraction.end(), 0.0);
+  for (double& f : fraction)
+  {
+    f /= total;
+  }
+  return meanAbsLogAreaRatio(triangles, uv, fraction);
+}
+} // namespace
 
 CompositionResult composeWithInverseTransport(const SurfaceMesh& surface,
   const std::vector<Vec2>& conformalUv, const std::vector<int>& boundaryLoop,
@@ -135,7 +159,7 @@ CompositionResult composeWithInverseTransport(const SurfaceMesh& surface,
   result.secondsUntangling = seconds(start);
   const std::vector<double> surfaceFraction = surfaceAreaFractions(surface);
   result.meanAbsLogAreaRatioInterpolated =
-    meanAbsLogAreaRatio(surface.triangles, result.uv, surfaceFraction);
+    measuredMeanAbsLogAreaRatio(surface, result.uv, surfaceFraction, options.measuredTriangles);
   result.meanAbsLogAreaRatio = result.meanAbsLogAreaRatioInterpolated;
   if (!report(0.3))
   {
@@ -155,6 +179,11 @@ CompositionResult composeWithInverseTransport(const SurfaceMesh& surface,
     {
       result.uv.clear(); // an aborted run has no map
       return result;
+    }
+    if (options.measuredTriangles > 0) // else the correction's own last mean is the figure
+    {
+      result.meanAbsLogAreaRatio =
+        measuredMeanAbsLogAreaRatio(surface, result.uv, surfaceFraction, options.measuredTriangles);
     }
   }
   result.secondsCorrection = seconds(start);

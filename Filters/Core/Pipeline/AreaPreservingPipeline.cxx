@@ -99,6 +99,10 @@ void compose(const AreaPreservingOptions& options, AreaPreservingResult& run)
   run.sampleImages = inverseTransportOfDiracs(run.diracs, run.transport);
   CompositionOptions compositionOptions = options.composition;
   compositionOptions.progress = stageProgress(options, CompositionRange);
+  if (conformal.filledHoles > 0)
+  {
+    compositionOptions.measuredTriangles = conformal.inputTriangles;
+  }
   try
   {
     run.composition = composeWithInverseTransport(conformal.surface.mesh, run.startUv,
@@ -118,12 +122,6 @@ void compose(const AreaPreservingOptions& options, AreaPreservingResult& run)
     CompositionResult& composition = run.composition;
     keepInputPart(conformal, { &composition.uv, &composition.interpolatedUv });
     run.figures = measureDistortion(conformal.surface.mesh, composition.uv);
-    if (conformal.filledHoles > 0)
-    {
-      composition.meanAbsLogAreaRatio = run.figures.meanAbsLogAreaRatio;
-      composition.meanAbsLogAreaRatioInterpolated =
-        measureDistortion(conformal.surface.mesh, composition.interpolatedUv).meanAbsLogAreaRatio;
-    }
   }
   catch (const std::exception& e)
   {
