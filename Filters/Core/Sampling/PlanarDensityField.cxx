@@ -462,6 +462,11 @@ double DensityField::value(Vec2 x) const
       return 0.0; // unreachable for a tiling; keeps the caller well-defined
     }
   }
+  return valueIn(static_cast<std::size_t>(t), x);
+}
+
+double DensityField::valueIn(std::size_t t, Vec2 x) const
+{
   if (!PerTriangle.empty())
   {
     return PerTriangle[t];
@@ -469,6 +474,12 @@ double DensityField::value(Vec2 x) const
   const Triangle& tri = Triangles[t];
   const auto l = barycentric(x, Points[tri[0]], Points[tri[1]], Points[tri[2]]);
   return std::max(0.0, l[0] * PerPoint[tri[0]] + l[1] * PerPoint[tri[1]] + l[2] * PerPoint[tri[2]]);
+}
+
+double DensityField::valueAtCentroid(std::size_t t) const
+{
+  const Triangle& tri = Triangles[t];
+  return valueIn(t, (1.0 / 3.0) * (Points[tri[0]] + Points[tri[1]] + Points[tri[2]]));
 }
 
 double DensityField::maxInsideTriangle(Vec2 a, Vec2 b, Vec2 c) const
@@ -528,7 +539,7 @@ double DensityField::maxInsideTriangle(Vec2 a, Vec2 b, Vec2 c) const
   return largest;
 }
 
-std::unique_ptr<SourceMeasure> DensityField::makeSource(std::string& error, double power) const
+std::unique_ptr<SourceMeasure> DensityField::makeSource(std::string& error) const
 {
   // Every triangle gets its own three points (piecewise-constant densities need that; for
   // piecewise-linear ones it costs memory only).
@@ -541,8 +552,7 @@ std::unique_ptr<SourceMeasure> DensityField::makeSource(std::string& error, doub
   {
     const int first = static_cast<int>(points.size());
     points.insert(points.end(), { a, b, c });
-    density.insert(
-      density.end(), { std::pow(fa, power), std::pow(fb, power), std::pow(fc, power) });
+    density.insert(density.end(), { fa, fb, fc });
     triangles.push_back({ first, first + 1, first + 2 });
   };
   std::vector<double> hullValue(Hull.size());

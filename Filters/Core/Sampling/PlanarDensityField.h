@@ -30,6 +30,8 @@ public:
 
   // Density at x (x outside the domain: the value at the nearest point of the domain).
   double value(Vec2 x) const;
+  // value() at the centroid of triangle t, without the search (the centroid lies in t).
+  double valueAtCentroid(std::size_t t) const;
   // Largest density over the triangle abc at its centroid and every input point inside it (a
   // piecewise-linear density peaks at input points, which a coarse triangle's corners and
   // centre would miss); the caller adds the corners, whose values it usually knows already.
@@ -55,16 +57,16 @@ public:
   const std::vector<Vec2>& points() const { return Points; }
   const std::vector<Triangle>& triangles() const { return Triangles; }
 
-  // The density raised to `power` as a source measure (exact integrals over cells clipped to the
-  // domain for power 1; the power-th power of the values interpolated the same way otherwise).
-  // For the unit disk the domain is the inscribed polygon plus a cap triangle on every boundary
+  // The density as a source measure (exact integrals over cells clipped to the domain; a power
+  // of the density interpolated the same way is withMappedDensity of it). For the unit disk the domain is the inscribed polygon plus a cap triangle on every boundary
   // edge (tangents' intersection as apex), so that a sample on the circle always has a cell of
   // positive measure, with the density of its edge's ends.
-  std::unique_ptr<SourceMeasure> makeSource(std::string& error, double power = 1.0) const;
+  std::unique_ptr<SourceMeasure> makeSource(std::string& error) const;
 
 private:
   DensityField() = default;
   int locate(Vec2 x) const; // triangle containing x, or -1
+  double valueIn(std::size_t t, Vec2 x) const; // the density of triangle t at x
   bool traceBoundaryLoops(std::string& error);
   // The steps of create(), each "" or its message.
   std::string orientAndIntegrate();

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <sstream>
 #include <unordered_map>
@@ -380,13 +381,24 @@ Moments polygonMoments(const std::vector<Vec2>& poly, Vec2 o)
   return m;
 }
 
+// The domain of a triangulated source: shared by sources that differ in their density only
+// (the sampler integrates g and g^2 over one large triangulation).
+struct TriangulatedDomain
+{
+  std::vector<Vec2> points;
+  std::vector<Triangle> triangles; // counter-clockwise
+  std::vector<Vec2> hull;          // domain boundary, CCW
+  Vec2 lo, hi;
+  BoxTree triangleBoxes; // overlap queries (triangles of conformal images span 1e10 in size)
+  Vec2 innerCenter;
+  double innerRadius = 0.0;
+};
+
 class TriangulatedSource final : public SourceMeasure
 {
 public:
-  std::vector<Vec2> points;
-  std::vector<Triangle> triangles;
+  std::shared_ptr<const TriangulatedDomain> domain;
   std::vector<double> density; // per point
-  std::vector<Vec2> hull;      // domain boundary, CCW
   // Linear density per triangle: f(x) = c0 + cx * x + cy * y.
   struct Linear
   {
@@ -394,21 +406,50 @@ public:
   };
   std::vector<Linear> linear;
   double total = 0.0;
-  Vec2 lo, hi;
-  BoxTree triangleBoxes; // overlap queries (triangles of conformal images span 1e10 in size)
-  Vec2 innerCenter;
-  double innerRadius = 0.0;
 
   double totalMass() const override { return total; }
   void bounds(Vec2& l, Vec2& h) const override
   {
-    l = lo;
-    h = hi;
+    l = domain->lo;
+    h = domain->hi;
   }
   void innerDisk(Vec2& center, double& radius) const override
   {
-    center = innerCenter;
-    radius = innerRadius;
+    center = domain->innerCenter;
+    radius = domain->innerRadius;
+  }
+
+  // The linear pieces and the total mass of `density` over the domain; "" or what is wrong
+  // with the density.
+  std::string interpolate(bool allowZeroDensity)
+  {
+    const auto& points = domain->points;
+    const auto& triangles = domain->triangles;
+    linear.clear();
+    linear.reserve(triangles.size());
+    total = 0.0;
+    for (const Triangle& tri : triangles)
+    {
+      for (int k = 0; k < 3; ++k)
+      {
+        const double f = density[tri[k]];
+        if (!(std::isfinite(f) && (f > 0.0 || (allowZeroDensity && f == 0.0))))
+        {
+          std::ostringstream s;
+          s << "source density at point " << tri[k] << " is " << f
+            << "; it must be finite and positive";
+          return s.str();
+        }
+      }
+      const Vec2 pa = points[tri[0]], pb = points[tri[1]], pc = points[tri[2]];
+      const double fa = density[tri[0]], fb = density[tri[1]], fc = density[tri[2]];
+      const double det = cross(pb - pa, pc - pa);
+      const double cx = ((fb - fa) * (pc.y - pa.y) - (fc - fa) * (pb.y - pa.y)) / det;
+      const double cy = ((fc - fa) * (pb.x - pa.x) - (fb - fa) * (pc.x - pa.x)) / det;
+      linear.push_back({ fa - cx * pa.x - cy * pa.y, cx, cy });
+      total += det / 6.0 * (fa + fb + fc);
+    }
+    return {};
   }
 
   double densityAt(int t, Vec2 p) const
@@ -450,10 +491,11 @@ public:
         usableEdges.push_back(k);
       }
     }
-    triangleBoxes.forOverlapping(cl, ch,
+    const auto& points = domain->points;
+    domain->triangleBoxes.forOverlapping(cl, ch,
       [&](int t)
       {
-        const Triangle& tri = triangles[t];
+        const Triangle& tri = domain->triangles[t];
         const Vec2 p0 = points[tri[0]], p1 = points[tri[1]], p2 = points[tri[2]];
         // Clip only against the cell edges that cut the triangle; most triangles are inside
         // every edge but one or two, or outside one edge (measured: 2x faster integration).
@@ -552,10 +594,10 @@ public:
 
   bool insideTriangle(int t, Vec2 p) const
   {
-    const Triangle& tri = triangles[t];
+    const Triangle& tri = domain->triangles[t];
     for (int k = 0; k < 3; ++k)
     {
-      const Vec2 a = points[tri[k]], b = points[tri[(k + 1) % 3]];
+      const Vec2 a = domain->points[tri[k]], b = domain->points[tri[(k + 1) % 3]];
       if (cross(b - a, p - a) < 0.0)
       {
         return false;
@@ -567,6 +609,7 @@ public:
   std::vector<Vec2> clippedBoundary(const PowerCell& cell, double) const override
   {
     std::vector<Vec2> poly = cell.vertices, scratch;
+    const auto& hull = domain->hull;
     const size_t n = hull.size();
     for (size_t k = 0; k < n && poly.size() >= 3; ++k)
     {
@@ -684,10 +727,9 @@ std::unique_ptr<SourceMeasure> makeTriangulatedSource(const std::vector<Vec2>& p
     error = "the source density must have one value per point";
     return nullptr;
   }
-  auto src = std::make_unique<TriangulatedSource>();
-  src->points = points;
-  src->triangles = triangles;
-  src->density = density.empty() ? std::vector<double>(points.size(), 1.0) : density;
+  auto domain = std::make_shared<TriangulatedDomain>();
+  domain->points = points;
+  domain->triangles = triangles;
   std::vector<char> used(points.size(), 0);
   double area = 0.0;
   for (size_t t = 0; t < triangles.size(); ++t)
@@ -706,15 +748,6 @@ std::unique_ptr<SourceMeasure> makeTriangulatedSource(const std::vector<Vec2>& p
         error = "source point " + std::to_string(tri[k]) + " has a non-finite coordinate";
         return nullptr;
       }
-      const double f = src->density[tri[k]];
-      if (!(std::isfinite(f) && (f > 0.0 || (allowZeroDensity && f == 0.0))))
-      {
-        std::ostringstream s;
-        s << "source density at point " << tri[k] << " is " << f
-          << "; it must be finite and positive";
-        error = s.str();
-        return nullptr;
-      }
       used[tri[k]] = 1;
     }
     const Vec2 a = points[tri[0]], b = points[tri[1]], c = points[tri[2]];
@@ -723,7 +756,7 @@ std::unique_ptr<SourceMeasure> makeTriangulatedSource(const std::vector<Vec2>& p
     {
       // Orientation does not matter for a planar domain: store counter-clockwise.
       std::swap(tri[1], tri[2]);
-      src->triangles[t] = tri;
+      domain->triangles[t] = tri;
       twice = -twice;
     }
     if (!(twice > 0.0))
@@ -732,14 +765,6 @@ std::unique_ptr<SourceMeasure> makeTriangulatedSource(const std::vector<Vec2>& p
       return nullptr;
     }
     area += 0.5 * twice;
-    // Linear interpolation of the density over the triangle.
-    const Vec2 pa = points[tri[0]], pb = points[tri[1]], pc = points[tri[2]];
-    const double fa = src->density[tri[0]], fb = src->density[tri[1]], fc = src->density[tri[2]];
-    const double det = cross(pb - pa, pc - pa);
-    const double cx = ((fb - fa) * (pc.y - pa.y) - (fc - fa) * (pb.y - pa.y)) / det;
-    const double cy = ((fc - fa) * (pb.x - pa.x) - (fb - fa) * (pc.x - pa.x)) / det;
-    src->linear.push_back({ fa - cx * pa.x - cy * pa.y, cx, cy });
-    src->total += det / 6.0 * (fa + fb + fc);
   }
   std::vector<Vec2> usedPoints;
   for (size_t i = 0; i < points.size(); ++i)
@@ -749,14 +774,14 @@ std::unique_ptr<SourceMeasure> makeTriangulatedSource(const std::vector<Vec2>& p
       usedPoints.push_back(points[i]);
     }
   }
-  src->hull = convexHull(usedPoints);
+  auto& hull = domain->hull;
+  hull = convexHull(usedPoints);
   double hullArea = 0.0;
-  for (size_t k = 0; k < src->hull.size(); ++k)
+  for (size_t k = 0; k < hull.size(); ++k)
   {
     // Relative to the first corner: absolute coordinates lose the area of a small domain far
     // from the origin to cancellation.
-    hullArea +=
-      cross(src->hull[k] - src->hull[0], src->hull[(k + 1) % src->hull.size()] - src->hull[0]);
+    hullArea += cross(hull[k] - hull[0], hull[(k + 1) % hull.size()] - hull[0]);
   }
   hullArea *= 0.5;
   if (!allowNonConvex && std::abs(hullArea - area) > 1e-9 * hullArea)
@@ -767,31 +792,31 @@ std::unique_ptr<SourceMeasure> makeTriangulatedSource(const std::vector<Vec2>& p
     error = s.str();
     return nullptr;
   }
-  src->lo = src->hi = src->hull[0];
-  for (const Vec2& p : src->hull)
+  domain->lo = domain->hi = hull[0];
+  for (const Vec2& p : hull)
   {
-    src->lo = { std::min(src->lo.x, p.x), std::min(src->lo.y, p.y) };
-    src->hi = { std::max(src->hi.x, p.x), std::max(src->hi.y, p.y) };
+    domain->lo = { std::min(domain->lo.x, p.x), std::min(domain->lo.y, p.y) };
+    domain->hi = { std::max(domain->hi.x, p.x), std::max(domain->hi.y, p.y) };
   }
   // Inner disk: centred at the hull's centroid, radius = distance to the nearest hull edge.
   Vec2 c = { 0.0, 0.0 };
-  for (const Vec2& p : src->hull)
+  for (const Vec2& p : hull)
   {
     c = c + p;
   }
-  c = (1.0 / src->hull.size()) * c;
+  c = (1.0 / hull.size()) * c;
   double r = std::numeric_limits<double>::max();
-  for (size_t k = 0; k < src->hull.size(); ++k)
+  for (size_t k = 0; k < hull.size(); ++k)
   {
-    const Vec2 a = src->hull[k], b = src->hull[(k + 1) % src->hull.size()];
+    const Vec2 a = hull[k], b = hull[(k + 1) % hull.size()];
     r = std::min(r, cross(b - a, c - a) / norm(b - a));
   }
-  src->innerCenter = c;
-  src->innerRadius = r;
+  domain->innerCenter = c;
+  domain->innerRadius = r;
   std::vector<BoxTree::Item> boxes(triangles.size());
   for (size_t t = 0; t < triangles.size(); ++t)
   {
-    const Triangle& tri = src->triangles[t];
+    const Triangle& tri = domain->triangles[t];
     BoxTree::Item& box = boxes[t];
     box.lo = box.hi = points[tri[0]];
     for (int k = 1; k < 3; ++k)
@@ -802,8 +827,29 @@ std::unique_ptr<SourceMeasure> makeTriangulatedSource(const std::vector<Vec2>& p
     }
     box.value = 0.0;
   }
-  src->triangleBoxes = BoxTree(std::move(boxes));
-  return src;
+  domain->triangleBoxes = BoxTree(std::move(boxes));
+  auto src = std::make_unique<TriangulatedSource>();
+  src->domain = std::move(domain);
+  src->density = density.empty() ? std::vector<double>(points.size(), 1.0) : density;
+  error = src->interpolate(allowZeroDensity);
+  return error.empty() ? std::move(src) : nullptr;
+}
+
+std::unique_ptr<SourceMeasure> withMappedDensity(const SourceMeasure& triangulated,
+  const std::function<double(double)>& map, std::string& error, bool allowZeroDensity)
+{
+  const auto* from = dynamic_cast<const TriangulatedSource*>(&triangulated);
+  if (!from)
+  {
+    error = "withMappedDensity needs a triangulated source";
+    return nullptr;
+  }
+  auto src = std::make_unique<TriangulatedSource>();
+  src->domain = from->domain;
+  src->density.resize(from->density.size());
+  std::transform(from->density.begin(), from->density.end(), src->density.begin(), map);
+  error = src->interpolate(allowZeroDensity);
+  return error.empty() ? std::move(src) : nullptr;
 }
 
 } // namespace otparam

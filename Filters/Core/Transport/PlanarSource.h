@@ -7,6 +7,7 @@
 
 #include "Common/Geometry.h"
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <utility>
@@ -68,6 +69,14 @@ std::unique_ptr<SourceMeasure> makeUnitDiskSource();
 std::unique_ptr<SourceMeasure> makeTriangulatedSource(const std::vector<Vec2>& points,
   const std::vector<Triangle>& triangles, const std::vector<double>& density, std::string& error,
   bool allowZeroDensity = false, bool allowNonConvex = false);
+
+// A source of makeTriangulatedSource with each per-point density value d replaced by map(d),
+// sharing its domain (triangles, hull, search tree): a second density over one large
+// triangulation costs a pass over its points, not a build. nullptr and error set when
+// `triangulated` is not such a source or a mapped value is not finite and positive (or zero,
+// with allowZeroDensity).
+std::unique_ptr<SourceMeasure> withMappedDensity(const SourceMeasure& triangulated,
+  const std::function<double(double)>& map, std::string& error, bool allowZeroDensity = false);
 
 } // namespace otparam
 

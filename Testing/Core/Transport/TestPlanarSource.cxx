@@ -113,6 +113,57 @@ TEST(TriangulatedSource, LinearDensityOnSquare)
   EXPECT_NEAR(out.edgeMass[0].second, 2.5, 1e-14);
 }
 
+TEST(TriangulatedSource, MappedDensityEqualsAFreshBuild)
+{
+  // A fan of 12 triangles around (0.1, 0.2), listed with mixed orientations, f = 2 + x^2 + y.
+  std::vector<Vec2> pts = { { 0.1, 0.2 } };
+  std::vector<Triangle> tris;
+  for (int k = 0; k < 12; ++k)
+  {
+    pts.push_back({ std::cos(k * Pi / 6), std::sin(k * Pi / 6) });
+    tris.push_back(k % 2 ? Triangle{ 0, 1 + k, 1 + (k + 1) % 12 } : Triangle{ 0, 1 + (k + 1) % 12, 1 + k });
+  }
+  std::vector<double> f, squared;
+  for (const Vec2& p : pts)
+  {
+    f.push_back(2 + p.x * p.x + p.y);
+    squared.push_back(std::pow(f.back(), 2.0));
+  }
+  std::string error;
+  const auto source = makeTriangulatedSource(pts, tris, f, error);
+  ASSERT_TRUE(source) << error;
+  const auto fresh = makeTriangulatedSource(pts, tris, squared, error);
+  ASSERT_TRUE(fresh) << error;
+  const auto mapped =
+    withMappedDensity(*source, [](double g) { return std::pow(g, 2.0); }, error);
+  ASSERT_TRUE(mapped) << error;
+  EXPECT_EQ(mapped->totalMass(), fresh->totalMass());
+  EXPECT_NE(mapped->totalMass(), source->totalMass());
+  PowerCell cell;
+  cell.vertices = { { -0.3, -2 }, { 0.4, -2 }, { 0.7, 2 }, { -0.3, 2 } };
+  cell.neighbor = { -1, 3, -1, 5 };
+  CellIntegrals a, b;
+  mapped->integrate(cell, a);
+  fresh->integrate(cell, b);
+  EXPECT_EQ(a.mass, b.mass);
+  EXPECT_EQ(a.moment.x, b.moment.x);
+  EXPECT_EQ(a.moment.y, b.moment.y);
+  ASSERT_EQ(a.edgeMass.size(), b.edgeMass.size());
+  for (size_t k = 0; k < a.edgeMass.size(); ++k)
+  {
+    EXPECT_EQ(a.edgeMass[k], b.edgeMass[k]);
+  }
+  // The original keeps its density.
+  CellIntegrals c;
+  source->integrate(cell, c);
+  EXPECT_LT(c.mass, a.mass);
+  // Refused: a mapped value that is not positive, and a source that is not triangulated.
+  EXPECT_FALSE(withMappedDensity(*source, [](double g) { return 1.0 - g; }, error));
+  EXPECT_NE(error.find("must be finite and positive"), std::string::npos) << error;
+  EXPECT_TRUE(withMappedDensity(*source, [](double) { return 0.0; }, error, true)) << error;
+  EXPECT_FALSE(withMappedDensity(*makeUnitDiskSource(), [](double g) { return g; }, error));
+}
+
 TEST(TriangulatedSource, CellWithTwoVerticesOneUpToRounding)
 {
   // A cell 1e-6 across with two vertices 1e-14 apart whose tiny edge points the wrong way (the
