@@ -4,7 +4,8 @@ exp(2 L / rho). One transport converges while that range is below ~3e12 (L / rho
 stopped at its start beyond; the disk map now transports in stages above 1e12 (field data
 TransportStages). Measured with default properties: converged with no flip up to L / rho = 40
 (the conformal density spans e^80 = 5.5e34; 3 stages; mean |log area ratio| 0.003 at
-L / rho = 2, 0.04 at 14-20, 0.08 at 40). At L / rho = 50 the conformal map itself runs out of
+L / rho = 2, 0.04-0.05 at 14-20, 0.08 at 40; at L / rho = 20 it moves with the sample set:
+0.045-0.057 for 3000-6000 samples, hence a bound of 0.06 there). At L / rho = 50 the conformal map itself runs out of
 double precision (the finger's triangles fold in its image), and the user gets an error that
 names the crowding, the stage that failed and what to do, never only a solver's state."""
 
@@ -70,7 +71,7 @@ def run(length_over_radius):
     return fig, errors, warnings
 
 
-for length, stages, area in ((2, 0, 0.01), (10, 0, 0.05), (14, 1, 0.05), (20, 1, 0.05),
+for length, stages, area in ((2, 0, 0.01), (10, 0, 0.05), (14, 1, 0.05), (20, 1, 0.06),
                              (40, 3, 0.1)):
     fig, errors, warnings = run(length)
     check(not errors.messages and not warnings.messages,

@@ -82,17 +82,18 @@ public:
   {
   }
 
-  // The callback of the next run, which aims at runTarget samples (of target in all).
-  std::function<bool(long long)> ofRun(double runTarget, double target)
+  // The callback of the next run, which aims at `target` samples. Most surfaces need one or two
+  // runs: each gets half the sampler's share of the progress, the runs after the second none.
+  std::function<bool(long long)> ofRun(double target)
   {
-    const double share = runTarget / (target * 2.2);
+    const double share = 0.45;
     const double done = this->Done;
-    this->Done = std::min(0.9, this->Done + 0.9 * share);
+    this->Done = std::min(0.9, this->Done + share);
     const SamplerOptions& options = this->Options;
-    return [&options, done, share, runTarget](long long count)
+    return [&options, done, share, target](long long count)
     {
       return !options.progress ||
-        options.progress(std::min(0.9, done + 0.9 * share * count / runTarget));
+        options.progress(std::min(0.9, done + share * std::min(1.0, count / target)));
     };
   }
 
@@ -1141,15 +1142,15 @@ void sampleSupport(
   std::unique_ptr<CDT> cdt;
   std::vector<std::vector<Vec2>> refinedLoops, loops; // all boundary samples; the kept ones
   RefinementProgress progress(options);
-  // Tighter than the convex path's 8%: the angle repair after the relaxation adds up to 5%
+  // Tighter than the convex path's 5%: the angle repair after the relaxation adds up to 5%
   // more samples along polygonal boundaries (band of zero density, 500 samples: 539 -> 565),
   // and a run here costs little.
   const bool finished = refineToTargetCount(
     options, integral, 0.04,
-    [&](double epsilon, double runTarget)
+    [&](double epsilon)
     {
       cdt = std::make_unique<CDT>();
-      const long long limit = refinementLimit(options, runTarget);
+      const long long limit = refinementLimit(options, target);
       std::vector<std::vector<Vec2>> boundary;
       long long boundarySamples = 0;
       for (const auto& loop : field.boundaryLoops())
@@ -1159,7 +1160,7 @@ void sampleSupport(
         {
           std::ostringstream text;
           text << "the domain's boundary alone needs more than " << limit
-               << " samples for a run aiming at " << static_cast<long long>(runTarget)
+               << " samples for a run aiming at " << static_cast<long long>(target)
                << ": it is too long or too fine for so few samples (a spike, a sliver); check "
                   "the domain's geometry"
                << (limit == options.maximumNumberOfSamples ? " or raise MaximumNumberOfSamples"
@@ -1171,7 +1172,7 @@ void sampleSupport(
       }
       insertLoops(*cdt, boundary);
       if (!refineSupport(*cdt, field, options, epsilon, limit, result.capped, result.stalled,
-            progress.ofRun(runTarget, target)))
+            progress.ofRun(target)))
       {
         return -1.0;
       }
@@ -1290,12 +1291,12 @@ void sampleConvex(
   std::unique_ptr<Refinement> refinement;
   std::unordered_set<const void*> drop; // boundary samples dropped from the last run
   const bool finished = refineToTargetCount(
-    options, integral, 0.08,
-    [&](double epsilon, double runTarget)
+    options, integral, 0.05,
+    [&](double epsilon)
     {
       refinement =
-        std::make_unique<Refinement>(field, options, epsilon, refinementLimit(options, runTarget));
-      if (!refinement->run(progress.ofRun(runTarget, target)))
+        std::make_unique<Refinement>(field, options, epsilon, refinementLimit(options, target));
+      if (!refinement->run(progress.ofRun(target)))
       {
         return -1.0;
       }
@@ -1366,10 +1367,9 @@ SamplerResult sampleDensity(const DensityField& field, const SamplerOptions& opt
   }
   else
   {
-    // eps from the target count: the count scales like 1 / eps^2, so one run at a sixteenth of
-    // the target calibrates the constant, and one or two more land within 10% of the target.
+    // eps from the target count (refineToTargetCount).
     const double integral = gradedArea(field, options);
-    if (options.progress && !options.progress(0.0)) // ~1 s at 2e6 density triangles
+    if (options.progress && !options.progress(0.0))
     {
       result.status.aborted = true;
       return result;

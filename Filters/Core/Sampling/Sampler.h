@@ -95,19 +95,18 @@ long long refinementLimit(const SamplerOptions& options, double runTarget);
 std::string runawayRefinementError(
   const SamplerOptions& options, double runTarget, long long reached, bool stalled);
 
-// The target-count loop of the graded refinement: the count scales like 1 / eps^2, so the first
-// eps is sqrt(gradedArea / target) and each later one is corrected by sqrt(count / target);
-// targets of 4000 and more first run at a quarter of the target (cheap), which calibrates the
-// constant. `refine(epsilon, runTarget)` refines from scratch and returns the count it
-// reached, or a negative number when aborted or failed (with result.status.error set); it sets
-// result.capped when it hit the cap. Stops
-// when a full-target run lands within `tolerance` (relative) of the target, after 5 runs, or
+// The target-count loop of the graded refinement: the count scales like 1 / eps^2 where eps
+// sets the sizes, so the first eps is sqrt(gradedArea / target); later runs correct it by the
+// power of count / target that the last two runs measured (2 after the first run).
+// `refine(epsilon)` refines from scratch and returns the count it reached, or a negative number
+// when aborted or failed (with result.status.error set); it sets result.capped when it hit the
+// cap. Stops when a run lands within `tolerance` (relative) of the target, after 5 runs, or
 // when capped. Sets result.epsilon (of the last run) and result.refinementRuns. Returns false
 // when aborted (result.status.aborted is then set) or when the refinement ran away (the last
 // run stopped at refinementLimit below MaximumNumberOfSamples, or any run stalled;
 // result.status.error says so).
 bool refineToTargetCount(const SamplerOptions& options, double gradedArea, double tolerance,
-  const std::function<double(double epsilon, double runTarget)>& refine, SamplerResultBase& result);
+  const std::function<double(double epsilon)>& refine, SamplerResultBase& result);
 
 // A refinement step's abort check: asks `keepGoing(count)` once 0.1 s has passed since it last
 // did. A step costs from a microsecond (a small density mesh) to milliseconds (bounding the

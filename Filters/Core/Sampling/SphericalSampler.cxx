@@ -664,18 +664,18 @@ Candidate sampleRefined(
   }
   std::unique_ptr<Refinement> refinement;
   const double target = static_cast<double>(options.numberOfSamples);
-  double done = 0.0; // progress: the runs together refine about 2.2 times the target
-  const auto refine = [&](double epsilon, double runTarget) -> double
+  double done = 0.0; // progress: most densities need one or two runs, each gets half
+  const auto refine = [&](double epsilon) -> double
   {
     refinement =
-      std::make_unique<Refinement>(field, options, epsilon, refinementLimit(options, runTarget));
-    const double share = runTarget / (2.2 * target), start = done;
-    done = std::min(0.9, done + 0.9 * share);
+      std::make_unique<Refinement>(field, options, epsilon, refinementLimit(options, target));
+    const double share = 0.45, start = done;
+    done = std::min(0.9, done + share);
     const bool finished = refinement->run(icosahedron(), {},
       [&](long long count)
       {
         return !options.progress ||
-          options.progress(std::min(0.9, start + 0.9 * share * count / runTarget));
+          options.progress(std::min(0.9, start + share * std::min(1.0, count / target)));
       });
     result.capped = refinement->capped();
     return finished ? static_cast<double>(refinement->triangulation().number_of_vertices()) : -1.0;
