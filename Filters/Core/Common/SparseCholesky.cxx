@@ -12,13 +12,35 @@ namespace otparam
 #ifdef OTPARAM_HAVE_CHOLMOD
 struct SparseCholesky::Cholmod
 {
-  Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> factor;
-  Cholmod()
+  // Eigen's wrapper with its factor in reach, for the half solves of solveLeading.
+  struct Factor : Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower>
+  {
+    cholmod_factor* factor() const { return this->m_cholmodFactor; }
+  };
+  Factor factor;
+  // givenOrder: the matrix comes in elimination order (computeWithLeadingBlock).
+  explicit Cholmod(bool givenOrder)
   {
     // AMD only: by default CHOLMOD also tries METIS when AMD's fill looks high, which on planar
     // graphs costs more time than it saves.
     this->factor.cholmod().nmethods = 1;
-    this->factor.cholmod().method[0].ordering = CHOLMOD_AMD;
+    this->factor.cholmod().method[0].ordering = givenOrder ? CHOLMOD_NATURAL : CHOLMOD_AMD;
+    // A postorder of the elimination tree could move a subtree of A11 behind rows of A22.
+    this->factor.cholmod().postorder = !givenOrder;
+  }
+
+  // L y = b (lower = true) or L^T y = b.
+  Eigen::MatrixXd halfSolve(const Eigen::MatrixXd& b, bool lower) const
+  {
+    Eigen::MatrixXd in = b;
+    cholmod_dense view = Eigen::viewAsCholmod(in);
+    cholmod_common& common = const_cast<Factor&>(this->factor).cholmod();
+    cholmod_dense* out =
+      cholmod_solve(lower ? CHOLMOD_L : CHOLMOD_Lt, this->factor.factor(), &view, &common);
+    Eigen::MatrixXd y = Eigen::Map<Eigen::MatrixXd>(
+      static_cast<double*>(out->x), static_cast<Eigen::Index>(out->nrow), b.cols());
+    cholmod_free_dense(&out, &common);
+    return y;
   }
 };
 #else
@@ -49,10 +71,11 @@ bool analyzeThenFactor(Factorization& factorization, const SparseCholesky::Spars
 bool SparseCholesky::compute(const SparseMatrix& lower, const std::function<bool()>& keepGoing)
 {
   this->Size = static_cast<int>(lower.rows());
+  this->Leading = -1;
 #ifdef OTPARAM_HAVE_CHOLMOD
   if (this->Size >= CholmodThreshold)
   {
-    this->Supernodal = std::make_unique<Cholmod>();
+    this->Supernodal = std::make_unique<Cholmod>(false);
     return analyzeThenFactor(this->Supernodal->factor, lower, keepGoing);
   }
   this->Supernodal.reset();
@@ -62,6 +85,26 @@ bool SparseCholesky::compute(const SparseMatrix& lower, const std::function<bool
 
 Eigen::MatrixXd SparseCholesky::solve(const Eigen::MatrixXd& b) const
 {
+  if (this->Leading >= 0)
+  {
+    Eigen::MatrixXd x;
+#ifdef OTPARAM_HAVE_CHOLMOD
+    if (this->Supernodal)
+    {
+      x = this->Supernodal->factor.solve(this->permuted(b));
+    }
+    else
+#endif
+    {
+      x = this->OrderedLdlt.solve(this->permuted(b));
+    }
+    Eigen::MatrixXd result(b.rows(), b.cols());
+    for (int i = 0; i < this->Size; ++i)
+    {
+      result.row(i) = x.row(this->Position[i]);
+    }
+    return result;
+  }
 #ifdef OTPARAM_HAVE_CHOLMOD
   if (this->Supernodal)
   {
@@ -69,6 +112,96 @@ Eigen::MatrixXd SparseCholesky::solve(const Eigen::MatrixXd& b) const
   }
 #endif
   return this->Ldlt.solve(b);
+}
+
+bool SparseCholesky::computeWithLeadingBlock(
+  const SparseMatrix& lower, int leading, const std::function<bool()>& keepGoing)
+{
+  const int n = static_cast<int>(lower.rows());
+  this->Size = n;
+  this->Leading = leading;
+  // Elimination order: A11 in AMD order, then A22's rows as they come.
+  const SparseMatrix a11 = lower.topLeftCorner(leading, leading);
+  Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> order;
+  Eigen::AMDOrdering<int>()(a11.selfadjointView<Eigen::Lower>(), order);
+  this->Position.assign(n, 0);
+  for (int k = 0; k < leading; ++k)
+  {
+    this->Position[order.indices()[k]] = k;
+  }
+  for (int i = leading; i < n; ++i)
+  {
+    this->Position[i] = i;
+  }
+  std::vector<Eigen::Triplet<double>> entries;
+  entries.reserve(lower.nonZeros());
+  for (int col = 0; col < n; ++col)
+  {
+    for (SparseMatrix::InnerIterator it(lower, col); it; ++it)
+    {
+      const int r = this->Position[it.row()], c = this->Position[col];
+      if (it.row() >= col)
+      {
+        entries.emplace_back(std::max(r, c), std::min(r, c), it.value());
+      }
+    }
+  }
+  SparseMatrix ordered(n, n);
+  ordered.setFromTriplets(entries.begin(), entries.end());
+  return this->factorPermuted(ordered, keepGoing);
+}
+
+bool SparseCholesky::factorPermuted(
+  const SparseMatrix& lower, const std::function<bool()>& keepGoing)
+{
+#ifdef OTPARAM_HAVE_CHOLMOD
+  if (this->Size >= CholmodThreshold)
+  {
+    this->Supernodal = std::make_unique<Cholmod>(true);
+    return analyzeThenFactor(this->Supernodal->factor, lower, keepGoing);
+  }
+#endif
+  this->Supernodal.reset();
+  return analyzeThenFactor(this->OrderedLdlt, lower, keepGoing);
+}
+
+Eigen::MatrixXd SparseCholesky::permuted(const Eigen::MatrixXd& b) const
+{
+  Eigen::MatrixXd p = Eigen::MatrixXd::Zero(this->Size, b.cols());
+  for (Eigen::Index i = 0; i < b.rows(); ++i)
+  {
+    p.row(this->Position[i]) = b.row(i);
+  }
+  return p;
+}
+
+// The leading block's factor is the first `Leading` columns of the whole one: solve with it,
+// the trailing rows held at zero between the two triangular solves.
+Eigen::MatrixXd SparseCholesky::solveLeading(const Eigen::MatrixXd& b) const
+{
+  const int trailing = this->Size - this->Leading;
+  Eigen::MatrixXd y = this->permuted(b);
+#ifdef OTPARAM_HAVE_CHOLMOD
+  if (this->Supernodal)
+  {
+    y = this->Supernodal->halfSolve(y, true);
+    y.bottomRows(trailing).setZero();
+    y = this->Supernodal->halfSolve(y, false);
+  }
+  else
+#endif
+  {
+    this->OrderedLdlt.matrixL().solveInPlace(y);
+    y = this->OrderedLdlt.vectorD().asDiagonal().inverse() * y;
+    y.bottomRows(trailing).setZero();
+    this->OrderedLdlt.matrixU().solveInPlace(y);
+  }
+  Eigen::MatrixXd x(b.rows(), b.cols());
+  for (Eigen::Index i = 0; i < b.rows(); ++i)
+  {
+    x.row(i) = y.row(this->Position[i]);
+  }
+  return x;
 }
 
 } // namespace otparam

@@ -8,6 +8,7 @@
 
 #include <functional>
 #include <memory>
+#include <vector>
 
 namespace otparam
 {
@@ -31,14 +32,31 @@ public:
   // be interrupted inside) says stop.
   bool compute(const SparseMatrix& lower, const std::function<bool()>& keepGoing = {});
   Eigen::MatrixXd solve(const Eigen::MatrixXd& b) const;
+
+  // Like compute, for A = [A11 A12; A21 A22] whose leading block A11 (the first `leading` rows
+  // and columns) is also to be solved: the factorization eliminates all of A11 first (in a
+  // fill-reducing order of its own), so that its first `leading` columns are a factor of A11
+  // and solveLeading uses them. One factorization instead of two (the conformal map's Neumann
+  // and Dirichlet Laplacians). A22's Schur complement is dense: for a short trailing block.
+  bool computeWithLeadingBlock(
+    const SparseMatrix& lower, int leading, const std::function<bool()>& keepGoing = {});
+  // x with A11 x = b (b: `leading` rows), after computeWithLeadingBlock.
+  Eigen::MatrixXd solveLeading(const Eigen::MatrixXd& b) const;
   int size() const { return Size; }
   // Eigen's solve keeps no state between calls; CHOLMOD's shares a workspace.
   bool concurrentSolvesAreSafe() const { return !Supernodal; }
 
 private:
   struct Cholmod; // CHOLMOD stays inside SparseCholesky.cxx (see there)
+  bool factorPermuted(const SparseMatrix& lower, const std::function<bool()>& keepGoing);
+  Eigen::MatrixXd permuted(const Eigen::MatrixXd& b) const;
   int Size = -1;
   Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower> Ldlt;
+  // computeWithLeadingBlock: the factor of P A P^T in its own order; Position[i] = row of
+  // unknown i in it.
+  Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower, Eigen::NaturalOrdering<int>> OrderedLdlt;
+  std::vector<int> Position;
+  int Leading = -1;
   std::unique_ptr<Cholmod> Supernodal;
 };
 

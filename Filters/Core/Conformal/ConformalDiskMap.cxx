@@ -50,6 +50,9 @@ namespace
 {
 constexpr double Pi = 3.14159265358979323846;
 constexpr double TwoPi = 2.0 * Pi;
+// Boundary vertices up to which one factorization serves the Neumann and the Dirichlet problem
+// (DiskFlattening::factor): its dense last block of n^2 / 2 entries costs n^3 / 3 flops.
+constexpr int MaximumCombinedBoundary = 4000;
 using Clock = std::chrono::steady_clock;
 using SparseMatrix = Eigen::SparseMatrix<double>;
 
@@ -238,14 +241,23 @@ public:
     }
   }
 
-  // Factors the Dirichlet (interior) and the Neumann (one boundary vertex pinned) Laplacians.
-  // Eigen's factorizations (below CholmodThreshold) run side by side, one per core; CHOLMOD's
-  // run one after the other, asking `keepGoing` between the steps: side by side, each on
-  // OpenBLAS's default threads, they oversubscribed the two cores (1.09M points: 7.8 s against
-  // 6.6 s in turn), and OpenBLAS's thread count cannot be changed safely at run time
-  // (design.md).
+  // Factors the Dirichlet (interior) and the Neumann (boundary vertex 0 pinned) Laplacians.
+  // From CHOLMOD's sizes up, one factorization serves both: the Neumann Laplacian's with its
+  // interior vertices first, whose leading block is the Dirichlet one
+  // (SparseCholesky::computeWithLeadingBlock; 273k points: 1.6 -> 1.0 s); its last block, the
+  // boundary's Dirichlet-to-Neumann operator, is dense, so only up to MaximumCombinedBoundary
+  // boundary vertices. Below, Eigen's two factorizations run side by side, one per core (as fast
+  // as the one); otherwise CHOLMOD's run one after the other, asking `keepGoing` between the
+  // steps: side by side, each on OpenBLAS's default threads, they oversubscribed the two
+  // cores (1.09M points: 7.8 s against 6.6 s in turn), and OpenBLAS's thread count cannot be
+  // changed safely at run time (design.md).
   bool factor(const std::function<bool()>& keepGoing)
   {
+    Combined = NI > 0 && NB - 1 <= MaximumCombinedBoundary &&
+      N - 1 >= SparseCholesky::CholmodThreshold;
+    // Combined: interior vertices (local NB..N-1) first, then boundary vertices 1..NB-1.
+    auto neumannRow = [this](int local)
+    { return !Combined ? local - 1 : local >= NB ? local - NB : NI + local - 1; };
     std::vector<Eigen::Triplet<double>> interior, pinned;
     for (int col = 0; col < N; ++col)
     {
@@ -266,15 +278,21 @@ public:
         }
         if (row > 0 && col > 0)
         {
-          pinned.emplace_back(row - 1, col - 1, it.value());
+          const int r = neumannRow(row), c = neumannRow(col);
+          pinned.emplace_back(std::max(r, c), std::min(r, c), it.value());
         }
       }
     }
     LIB.resize(NI, NB);
     LIB.setFromTriplets(InteriorBoundaryEntries.begin(), InteriorBoundaryEntries.end());
-    SparseMatrix LII(NI, NI), LN(N - 1, N - 1);
-    LII.setFromTriplets(interior.begin(), interior.end());
+    SparseMatrix LN(N - 1, N - 1);
     LN.setFromTriplets(pinned.begin(), pinned.end());
+    if (Combined)
+    {
+      return Neumann.computeWithLeadingBlock(LN, NI, keepGoing);
+    }
+    SparseMatrix LII(NI, NI);
+    LII.setFromTriplets(interior.begin(), interior.end());
     if (N - 1 >= SparseCholesky::CholmodThreshold)
     {
       return (NI == 0 || Dirichlet.compute(LII, keepGoing)) && keepGoing() &&
@@ -295,9 +313,22 @@ public:
   Eigen::VectorXd solveNeumann(const Eigen::VectorXd& rhs) const
   {
     Eigen::VectorXd u(N);
-    u[0] = 0.0;
-    u.tail(N - 1) = Neumann.solve(rhs.tail(N - 1));
+    if (!Combined)
+    {
+      u << 0.0, Neumann.solve(rhs.tail(N - 1));
+      return u;
+    }
+    Eigen::VectorXd ordered(N - 1);
+    ordered << rhs.tail(NI), rhs.segment(1, NB - 1);
+    const Eigen::VectorXd solution = Neumann.solve(ordered);
+    u << 0.0, solution.tail(NB - 1), solution.head(NI);
     return u;
+  }
+
+  // Interior values of L_II x = rhs (NI rows).
+  Eigen::MatrixXd solveDirichlet(const Eigen::MatrixXd& rhs) const
+  {
+    return Combined ? Neumann.solveLeading(rhs) : Dirichlet.solve(rhs);
   }
 
   // Boundary angles from one boundary-first-flattening step towards a circle.
@@ -357,18 +388,18 @@ public:
     if (NI > 0)
     {
       const Eigen::MatrixXd rhs = -(LIB * X.topRows(NB));
-      if (Dirichlet.concurrentSolvesAreSafe())
+      if ((Combined ? Neumann : Dirichlet).concurrentSolvesAreSafe())
       {
         // u and v are independent solves: one per core.
 #pragma omp parallel for num_threads(2)
         for (int c = 0; c < 2; ++c)
         {
-          X.col(c).tail(NI) = Dirichlet.solve(rhs.col(c));
+          X.col(c).tail(NI) = solveDirichlet(rhs.col(c));
         }
       }
       else
       {
-        X.bottomRows(NI) = Dirichlet.solve(rhs);
+        X.bottomRows(NI) = solveDirichlet(rhs);
       }
     }
     return X;
@@ -441,6 +472,7 @@ public:
   SparseMatrix L, LIB;
   std::vector<Eigen::Triplet<double>> InteriorBoundaryEntries;
   SparseCholesky Dirichlet, Neumann;
+  bool Combined = false; // Neumann's factor also solves the Dirichlet problem
 };
 
 std::complex<double> moebius(std::complex<double> z, std::complex<double> a)

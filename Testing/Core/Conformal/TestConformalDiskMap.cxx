@@ -1,5 +1,6 @@
 // The conformal disk map against the exact map of a hemisphere, against CGAL's discrete
 // conformal map on the shared meshes, and the disk-topology checks.
+#include "Common/SparseCholesky.h"
 #include "Conformal/ConformalDiskMap.h"
 #include "Mesh/DistortionMetrics.h"
 #include "Mesh/SurfaceMesh.h"
@@ -100,6 +101,23 @@ TEST(ConformalDiskMap, HemisphereConvergesToStereographicProjection)
     previous = error;
   }
   EXPECT_LT(previous, 2e-3);
+}
+
+TEST(ConformalDiskMap, HemisphereAtCholmodSizeMatchesStereographicProjection)
+{
+  // From SparseCholesky::CholmodThreshold points up, one CHOLMOD factorization serves the
+  // Neumann and the Dirichlet Laplacian (DiskFlattening::factor).
+  const SurfaceMesh hemisphere = makeHemisphere(260);
+  ASSERT_GE(hemisphere.points.size(), static_cast<size_t>(SparseCholesky::CholmodThreshold) + 1);
+  ConformalDiskMapOptions options;
+  options.centerVertex = 0;
+  const Mapped m = mapMesh(hemisphere, options);
+  EXPECT_EQ(m.figures.flippedTriangles, 0);
+  EXPECT_LE(largestBoundaryRadiusError(m), 1e-12);
+  const double error = distanceToStereographic(hemisphere, m.map.uv, m.map.alignVertex);
+  std::printf("hemisphere with 260 rings (%zu points): largest error %.3e\n",
+    hemisphere.points.size(), error);
+  EXPECT_LT(error, 2e-5); // second order: ~(32 / 260)^2 of the 32-ring error
 }
 
 TEST(ConformalDiskMap, SharedHemisphereMatchesStereographicProjection)
