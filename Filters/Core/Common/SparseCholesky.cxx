@@ -29,6 +29,36 @@ struct SparseCholesky::Cholmod
     this->factor.cholmod().postorder = !givenOrder;
   }
 
+  // The factor's columns from `first` on, rows from `first` on (dense): with the matrix in
+  // elimination order (natural ordering, no postorder) CHOLMOD keeps it in that order.
+  Eigen::MatrixXd trailingBlock(int first) const
+  {
+    const cholmod_factor* f = this->factor.factor();
+    const int n = static_cast<int>(f->n), m = n - first;
+    Eigen::MatrixXd block = Eigen::MatrixXd::Zero(m, m);
+    const int* super = static_cast<const int*>(f->super);
+    const int* pi = static_cast<const int*>(f->pi);
+    const int* px = static_cast<const int*>(f->px);
+    const int* rows = static_cast<const int*>(f->s);
+    const double* x = static_cast<const double*>(f->x);
+    for (std::size_t k = 0; k < f->nsuper; ++k)
+    {
+      const int rowCount = pi[k + 1] - pi[k];
+      for (int col = std::max(super[k], first); col < super[k + 1]; ++col)
+      {
+        for (int r = 0; r < rowCount; ++r)
+        {
+          const int row = rows[pi[k] + r];
+          if (row >= first)
+          {
+            block(row - first, col - first) = x[px[k] + r + (col - super[k]) * rowCount];
+          }
+        }
+      }
+    }
+    return block;
+  }
+
   // L y = b (lower = true) or L^T y = b.
   Eigen::MatrixXd halfSolve(const Eigen::MatrixXd& b, bool lower) const
   {
@@ -173,6 +203,51 @@ Eigen::MatrixXd SparseCholesky::permuted(const Eigen::MatrixXd& b) const
     p.row(this->Position[i]) = b.row(i);
   }
   return p;
+}
+
+SparseCholesky::SchurFactor SparseCholesky::trailingSchurFactor() const
+{
+  const int first = this->Leading;
+  const int m = this->Size - first;
+  SchurFactor schur;
+#ifdef OTPARAM_HAVE_CHOLMOD
+  if (this->Supernodal)
+  {
+    schur.lower = this->Supernodal->trailingBlock(first);
+    schur.diagonal = Eigen::VectorXd::Ones(m);
+    return schur;
+  }
+#endif
+  // L D L^T: the trailing block of the unit lower L, and of D.
+  schur.lower = Eigen::MatrixXd::Identity(m, m);
+  const SparseMatrix& stored = this->OrderedLdlt.matrixL().nestedExpression();
+  for (int col = first; col < this->Size; ++col)
+  {
+    for (SparseMatrix::InnerIterator it(stored, col); it; ++it)
+    {
+      if (it.row() > col)
+      {
+        schur.lower(it.row() - first, col - first) = it.value();
+      }
+    }
+  }
+  schur.diagonal = this->OrderedLdlt.vectorD().tail(m);
+  return schur;
+}
+
+Eigen::MatrixXd SparseCholesky::SchurFactor::apply(const Eigen::MatrixXd& y) const
+{
+  const auto f = this->lower.triangularView<Eigen::Lower>();
+  return f * (this->diagonal.asDiagonal() * (f.transpose() * y));
+}
+
+Eigen::MatrixXd SparseCholesky::SchurFactor::solve(const Eigen::MatrixXd& r) const
+{
+  const auto f = this->lower.triangularView<Eigen::Lower>();
+  Eigen::MatrixXd x = f.solve(r);
+  x = this->diagonal.asDiagonal().inverse() * x;
+  f.transpose().solveInPlace(x);
+  return x;
 }
 
 // The leading block's factor is the first `Leading` columns of the whole one: solve with it,

@@ -42,6 +42,17 @@ public:
     const SparseMatrix& lower, int leading, const std::function<bool()>& keepGoing = {});
   // x with A11 x = b (b: `leading` rows), after computeWithLeadingBlock.
   Eigen::MatrixXd solveLeading(const Eigen::MatrixXd& b) const;
+  // The Schur complement A22 - A21 A11^-1 A12 = F diag(d) F^T (F dense lower triangular), read
+  // off the factor's last block after computeWithLeadingBlock: products and solves with it
+  // cost O(m^2) for m trailing rows. The conformal map's boundary Dirichlet-to-Neumann map.
+  struct SchurFactor
+  {
+    Eigen::MatrixXd lower;   // F
+    Eigen::VectorXd diagonal; // d
+    Eigen::MatrixXd apply(const Eigen::MatrixXd& y) const;
+    Eigen::MatrixXd solve(const Eigen::MatrixXd& r) const;
+  };
+  SchurFactor trailingSchurFactor() const;
   int size() const { return Size; }
   // Eigen's solve keeps no state between calls; CHOLMOD's shares a workspace.
   bool concurrentSolvesAreSafe() const { return !Supernodal; }

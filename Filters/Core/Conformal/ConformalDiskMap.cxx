@@ -50,9 +50,16 @@ namespace
 {
 constexpr double Pi = 3.14159265358979323846;
 constexpr double TwoPi = 2.0 * Pi;
-// Boundary vertices up to which one factorization serves the Neumann and the Dirichlet problem
-// (DiskFlattening::factor): its dense last block of n^2 / 2 entries costs n^3 / 3 flops.
-constexpr int MaximumCombinedBoundary = 4000;
+// When one factorization serves the Neumann and the Dirichlet problem (DiskFlattening::factor):
+// its dense last block of NB^2 / 2 entries costs NB^3 / 3 flops (Eigen's simplicial LDL^T:
+// ~2 GFlop/s here, 10 s at NB = 4000), against ~N^1.5 for the sparse part of a planar mesh
+// (shared meshes: NB^3 / N^1.5 = 0.01 .. 2.3; the face subdivided to 1.09M points 2.1). Up to
+// 8000 boundary vertices (a dense block of 256 MB).
+bool factorTogether(int boundary, int points)
+{
+  const double nb = boundary, n = points;
+  return boundary <= 8000 && nb * nb * nb <= 30.0 * n * std::sqrt(n);
+}
 using Clock = std::chrono::steady_clock;
 using SparseMatrix = Eigen::SparseMatrix<double>;
 
@@ -241,20 +248,19 @@ public:
     }
   }
 
-  // Factors the Dirichlet (interior) and the Neumann (boundary vertex 0 pinned) Laplacians.
-  // From CHOLMOD's sizes up, one factorization serves both: the Neumann Laplacian's with its
-  // interior vertices first, whose leading block is the Dirichlet one
-  // (SparseCholesky::computeWithLeadingBlock; 273k points: 1.6 -> 1.0 s); its last block, the
-  // boundary's Dirichlet-to-Neumann operator, is dense, so only up to MaximumCombinedBoundary
-  // boundary vertices. Below, Eigen's two factorizations run side by side, one per core (as fast
-  // as the one); otherwise CHOLMOD's run one after the other, asking `keepGoing` between the
-  // steps: side by side, each on OpenBLAS's default threads, they oversubscribed the two
-  // cores (1.09M points: 7.8 s against 6.6 s in turn), and OpenBLAS's thread count cannot be
-  // changed safely at run time (design.md).
+  // Factors the Dirichlet (interior) and the Neumann (boundary vertex 0 pinned) Laplacians in
+  // one factorization: the Neumann Laplacian's with its interior vertices first, whose leading
+  // block is the Dirichlet one (SparseCholesky::computeWithLeadingBlock), and whose last block
+  // is a dense factor of the boundary's Dirichlet-to-Neumann map, on which the iterations run
+  // without solves (boundaryFlux). That last block costs NB^3 / 3 flops: for long boundaries
+  // (factorTogether) the two Laplacians are factored apart, Eigen's
+  // side by side (one per core), CHOLMOD's one after the other, asking `keepGoing` between the
+  // steps: side by side, each on OpenBLAS's default threads, they oversubscribed the two cores
+  // (1.09M points: 7.8 s against 6.6 s in turn), and OpenBLAS's thread count cannot be changed
+  // safely at run time (design.md).
   bool factor(const std::function<bool()>& keepGoing)
   {
-    Combined = NI > 0 && NB - 1 <= MaximumCombinedBoundary &&
-      N - 1 >= SparseCholesky::CholmodThreshold;
+    Combined = NI > 0 && factorTogether(NB, N);
     // Combined: interior vertices (local NB..N-1) first, then boundary vertices 1..NB-1.
     auto neumannRow = [this](int local)
     { return !Combined ? local - 1 : local >= NB ? local - NB : NI + local - 1; };
@@ -289,7 +295,12 @@ public:
     LN.setFromTriplets(pinned.begin(), pinned.end());
     if (Combined)
     {
-      return Neumann.computeWithLeadingBlock(LN, NI, keepGoing);
+      if (!Neumann.computeWithLeadingBlock(LN, NI, keepGoing))
+      {
+        return false;
+      }
+      BoundaryOperator = Neumann.trailingSchurFactor();
+      return true;
     }
     SparseMatrix LII(NI, NI);
     LII.setFromTriplets(interior.begin(), interior.end());
@@ -376,15 +387,20 @@ public:
     return theta;
   }
 
+  // Boundary points at angles theta (NB x 2).
+  Eigen::MatrixXd boundaryPoints(const Eigen::VectorXd& theta) const
+  {
+    Eigen::MatrixXd XB(NB, 2);
+    XB.col(0) = theta.array().cos();
+    XB.col(1) = theta.array().sin();
+    return XB;
+  }
+
   // Harmonic extension of boundary points at angles theta (N x 2, local numbering).
   Eigen::MatrixXd extend(const Eigen::VectorXd& theta) const
   {
     Eigen::MatrixXd X(N, 2);
-    for (int i = 0; i < NB; ++i)
-    {
-      X(i, 0) = std::cos(theta[i]);
-      X(i, 1) = std::sin(theta[i]);
-    }
+    X.topRows(NB) = boundaryPoints(theta);
     if (NI > 0)
     {
       const Eigen::MatrixXd rhs = -(LIB * X.topRows(NB));
@@ -405,10 +421,44 @@ public:
     return X;
   }
 
-  double conformalEnergy(const Eigen::MatrixXd& X, const Eigen::VectorXd& theta) const
+  // (L X) on the boundary for the harmonic extension X of the boundary points at angles theta:
+  // the Dirichlet-to-Neumann map, which the combined factorization holds as a dense factor of
+  // its Schur complement (O(NB^2), no solve over the interior).
+  Eigen::MatrixXd boundaryFlux(const Eigen::VectorXd& theta) const
   {
-    const Eigen::MatrixXd LX = L * X;
-    double dirichlet = 0.5 * (X.col(0).dot(LX.col(0)) + X.col(1).dot(LX.col(1)));
+    if (!Combined)
+    {
+      return (L * extend(theta)).topRows(NB);
+    }
+    // The pinned vertex 0's row and column follow from the rows summing to zero.
+    const Eigen::MatrixXd XB = boundaryPoints(theta);
+    const Eigen::MatrixXd relative = XB.bottomRows(NB - 1).rowwise() - XB.row(0);
+    Eigen::MatrixXd flux(NB, 2);
+    flux.bottomRows(NB - 1) = BoundaryOperator.apply(relative);
+    flux.row(0) = -flux.bottomRows(NB - 1).colwise().sum();
+    return flux;
+  }
+
+  // u on the boundary with L u = rhs (rhs zero inside, summing to zero), u = 0 at vertex 0.
+  Eigen::VectorXd solveNeumannOnBoundary(const Eigen::VectorXd& boundaryRhs) const
+  {
+    if (!Combined)
+    {
+      Eigen::VectorXd rhs = Eigen::VectorXd::Zero(N);
+      rhs.head(NB) = boundaryRhs;
+      return solveNeumann(rhs).head(NB);
+    }
+    Eigen::VectorXd u(NB);
+    u << 0.0, BoundaryOperator.solve(boundaryRhs.tail(NB - 1));
+    return u;
+  }
+
+  // E_C of the harmonic extension, from its boundary flux (X . L X = XB . flux when L X = 0
+  // inside).
+  double conformalEnergy(const Eigen::VectorXd& theta, const Eigen::MatrixXd& flux) const
+  {
+    const Eigen::MatrixXd XB = boundaryPoints(theta);
+    double dirichlet = 0.5 * (XB.col(0).dot(flux.col(0)) + XB.col(1).dot(flux.col(1)));
     double area = 0.0;
     for (int i = 0; i < NB; ++i)
     {
@@ -436,9 +486,8 @@ public:
   }
 
   // Preconditioned descent direction of the conformal energy in theta, Moebius modes removed.
-  Eigen::VectorXd descentDirection(const Eigen::MatrixXd& X, const Eigen::VectorXd& theta) const
+  Eigen::VectorXd descentDirection(const Eigen::VectorXd& theta, const Eigen::MatrixXd& flux) const
   {
-    const Eigen::MatrixXd flux = L * X;
     Eigen::VectorXd gradient(NB), weight(NB);
     for (int i = 0; i < NB; ++i)
     {
@@ -447,9 +496,7 @@ public:
         0.5 * (std::cos(before) - std::cos(after));
       weight[i] = 0.5 * (before + after);
     }
-    Eigen::VectorXd rhs = Eigen::VectorXd::Zero(N);
-    rhs.head(NB) = gradient.array() - gradient.mean();
-    Eigen::VectorXd d = solveNeumann(rhs).head(NB);
+    Eigen::VectorXd d = solveNeumannOnBoundary(gradient.array() - gradient.mean());
     // Rotations and Moebius maps barely change the energy: remove {1, cos, sin} from the step
     // (weighted least squares over the circle) so the iteration does not drift along them.
     Eigen::MatrixXd modes(NB, 3);
@@ -473,6 +520,7 @@ public:
   std::vector<Eigen::Triplet<double>> InteriorBoundaryEntries;
   SparseCholesky Dirichlet, Neumann;
   bool Combined = false; // Neumann's factor also solves the Dirichlet problem
+  SparseCholesky::SchurFactor BoundaryOperator; // Combined: the pinned Dirichlet-to-Neumann map
 };
 
 std::complex<double> moebius(std::complex<double> z, std::complex<double> a)
@@ -579,22 +627,23 @@ std::string checkOptions(
   return msg.str();
 }
 
-// Descent on the boundary angles theta from the start X = extend(theta): the conformal energy
-// decreases at every accepted step. Returns false when the progress callback aborts.
+// Descent on the boundary angles theta: the conformal energy decreases at every accepted
+// step. Returns false when the progress callback aborts.
 bool minimizeConformalEnergy(const DiskFlattening& disk, const ConformalDiskMapOptions& options,
-  const std::function<bool(double)>& keepGoing, Eigen::VectorXd& theta, Eigen::MatrixXd& X,
+  const std::function<bool(double)>& keepGoing, Eigen::VectorXd& theta,
   ConformalDiskMapResult& result)
 {
-  double energy = disk.conformalEnergy(X, theta);
+  Eigen::MatrixXd flux = disk.boundaryFlux(theta);
+  double energy = disk.conformalEnergy(theta, flux);
   for (int it = 0; it < options.maximumNumberOfIterations; ++it)
   {
-    const Eigen::VectorXd direction = disk.descentDirection(X, theta);
+    const Eigen::VectorXd direction = disk.descentDirection(theta, flux);
     // The preconditioned Hessian's spectrum is ~[1/2, 1): 4/3 is the best fixed step (each
     // mode contracts by <= 1/3); measured 8-12 iterations instead of 11-18 with step 1.
     double step = 4.0 / 3.0;
     bool accepted = false;
     Eigen::VectorXd trial;
-    Eigen::MatrixXd trialX;
+    Eigen::MatrixXd trialFlux;
     double trialEnergy = energy;
     for (int halving = 0; halving < 12 && !accepted; ++halving, step *= 0.5)
     {
@@ -603,8 +652,8 @@ bool minimizeConformalEnergy(const DiskFlattening& disk, const ConformalDiskMapO
       {
         continue;
       }
-      trialX = disk.extend(trial);
-      trialEnergy = disk.conformalEnergy(trialX, trial);
+      trialFlux = disk.boundaryFlux(trial);
+      trialEnergy = disk.conformalEnergy(trial, trialFlux);
       accepted = trialEnergy <= energy;
     }
     if (!accepted)
@@ -615,7 +664,7 @@ bool minimizeConformalEnergy(const DiskFlattening& disk, const ConformalDiskMapO
     result.iterations = it + 1;
     result.lastAngleUpdate = step * direction.cwiseAbs().maxCoeff();
     theta = trial;
-    X = trialX;
+    flux = trialFlux;
     energy = trialEnergy;
     if (!keepGoing(0.2 + 0.6 * (it + 1) / std::max(1, options.maximumNumberOfIterations)))
     {
@@ -796,11 +845,11 @@ ConformalDiskMapResult computeWithLaplacian(const SurfaceMesh& mesh,
     Eigen::Map<const Eigen::VectorXd> lengths(disk.BoundaryLength.data(), disk.NB);
     theta = DiskFlattening::anglesFromLengths(lengths);
   }
-  Eigen::MatrixXd X = disk.extend(theta);
-  if (!minimizeConformalEnergy(disk, options, keepGoing, theta, X, result))
+  if (!minimizeConformalEnergy(disk, options, keepGoing, theta, result))
   {
     return result;
   }
+  Eigen::MatrixXd X = disk.extend(theta);
   const int barycentre =
     options.centerVertex >= 0 ? -1 : areaBarycentreVertex(mesh, clipped, disk, X);
   if (options.centerVertex < 0 && barycentre < 0)

@@ -123,6 +123,35 @@ TEST(ConformalDiskMap, HemisphereAtCholmodSizeMatchesStereographicProjection)
   EXPECT_LT(stereographicError(260), 2e-6);
 }
 
+TEST(ConformalDiskMap, LongBoundariesAreFactoredApart)
+{
+  // A regular polygon fanned from its centre maps to itself (by symmetry the boundary angles
+  // stay even). One factorization serves both Laplacians while NB^3 <= 30 N^1.5 (10 sides);
+  // beyond, the dense Dirichlet-to-Neumann block would cost too much and they are factored
+  // apart (11 sides, and 2000).
+  for (int sides : { 10, 11, 2000 })
+  {
+    SurfaceMesh fan;
+    fan.points.push_back({ 0.0, 0.0, 0.0 });
+    for (int k = 0; k < sides; ++k)
+    {
+      fan.points.push_back({ std::cos(2 * Pi * k / sides), std::sin(2 * Pi * k / sides), 0.0 });
+      fan.triangles.push_back({ 0, 1 + k, 1 + (k + 1) % sides });
+    }
+    ConformalDiskMapOptions options;
+    options.centerVertex = 0;
+    options.alignVertex = 1;
+    const Mapped m = mapMesh(fan, options);
+    EXPECT_EQ(m.figures.flippedTriangles, 0);
+    double worst = 0.0;
+    for (size_t v = 0; v < fan.points.size(); ++v)
+    {
+      worst = std::max(worst, norm(m.map.uv[v] - Vec2{ fan.points[v].x, fan.points[v].y }));
+    }
+    EXPECT_LT(worst, 1e-9) << sides << " sides";
+  }
+}
+
 TEST(ConformalDiskMap, SharedHemisphereMatchesStereographicProjection)
 {
   SurfaceMesh mesh = readMesh(sharedMesh("hemisphere_2k.obj"));
