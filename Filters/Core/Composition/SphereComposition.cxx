@@ -204,7 +204,6 @@ SphereCompositionResult composeOnSphere(const SurfaceMesh& surface,
   }
   result.flippedAfterInterpolation =
     static_cast<std::int64_t>(flippedOnSphere(surface, result.interpolated).size());
-  result.meanAbsLogAreaRatioInterpolated = sphereMeanAbsLogAreaRatio(surface, result.interpolated);
 
   t0 = Clock::now();
   result.sphere = result.interpolated;
@@ -214,7 +213,9 @@ SphereCompositionResult composeOnSphere(const SurfaceMesh& surface,
     [&](int v) { return untangleVertex(v, stars, result.sphere); },
     [&](int t) { return surface.triangles[t]; });
   result.secondsUntangling = secondsSince(t0);
-  result.meanAbsLogAreaRatio = sphereMeanAbsLogAreaRatio(surface, result.sphere);
+  // As on the disk: the untangled map before the correction.
+  result.meanAbsLogAreaRatioInterpolated = sphereMeanAbsLogAreaRatio(surface, result.sphere);
+  result.meanAbsLogAreaRatio = result.meanAbsLogAreaRatioInterpolated;
   if (!report(0.3))
   {
     result.sphere.clear(); // an aborted run has no map

@@ -36,7 +36,7 @@ struct SphereCompositionResult
   std::int64_t untangledVertices = 0;
   std::int64_t flippedTriangles = 0; // after everything (0 unless untangling failed)
   int correctionSweeps = 0;
-  double meanAbsLogAreaRatioInterpolated = 0.0;
+  double meanAbsLogAreaRatioInterpolated = 0.0; // after steps 1-2 (untangled, not corrected)
   double meanAbsLogAreaRatio = 0.0;
   double secondsInterpolation = 0.0;
   double secondsUntangling = 0.0;
