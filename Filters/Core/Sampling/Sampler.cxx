@@ -139,7 +139,11 @@ bool refineToTargetCount(const SamplerOptions& options, double gradedArea, doubl
   const std::function<double(double epsilon)>& refine, SamplerResultBase& result)
 {
   const double target = static_cast<double>(options.numberOfSamples);
-  double epsilon = std::sqrt(gradedArea / target);
+  // From 5e4 samples a first run often lands 20-30% short (the Gaussian mixture of contrast
+  // 1e6: 0.69 of 1e5) and costs most of a full run: a run at a quarter of the target calibrates
+  // the constant for less (1e6 samples: 17.7 s against 21 s). Below, the count follows eps^-2
+  // less well and the first run at the target lands within 5% on most surfaces.
+  double epsilon = std::sqrt(gradedArea / (target >= 5e4 ? target / 4.0 : target));
   double lastEpsilon = 0.0, lastCount = 0.0;
   for (int run = 0; run < 5; ++run)
   {

@@ -96,8 +96,9 @@ std::string runawayRefinementError(
   const SamplerOptions& options, double runTarget, long long reached, bool stalled);
 
 // The target-count loop of the graded refinement: the count scales like 1 / eps^2 where eps
-// sets the sizes, so the first eps is sqrt(gradedArea / target); later runs correct it by the
-// power of count / target that the last two runs measured (2 after the first run).
+// sets the sizes, so the first eps is sqrt(gradedArea / target) (from 5e4 samples a pilot run
+// at a quarter of the target); later runs correct it by the power of count / target that the
+// last two runs measured (2 after the first run).
 // `refine(epsilon)` refines from scratch and returns the count it reached, or a negative number
 // when aborted or failed (with result.status.error set); it sets result.capped when it hit the
 // cap. Stops when a run lands within `tolerance` (relative) of the target, after 5 runs, or
