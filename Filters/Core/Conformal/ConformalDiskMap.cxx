@@ -336,6 +336,16 @@ public:
     return u;
   }
 
+  // w with X(v) = w . X_B for the harmonic extension X of any boundary values X_B (v interior):
+  // X_I = -L_II^-1 L_IB X_B, so w = -L_BI L_II^-1 e_v.
+  Eigen::VectorXd harmonicWeights(int v) const
+  {
+    Eigen::VectorXd unit = Eigen::VectorXd::Zero(NI);
+    unit[v - NB] = 1.0;
+    const Eigen::VectorXd z = solveDirichlet(unit);
+    return -(LIB.transpose() * z);
+  }
+
   // Interior values of L_II x = rhs (NI rows).
   Eigen::MatrixXd solveDirichlet(const Eigen::MatrixXd& rhs) const
   {
@@ -689,20 +699,24 @@ bool minimizeConformalEnergy(const DiskFlattening& disk, const ConformalDiskMapO
   return true;
 }
 
-// Moebius normalization on the boundary angles, re-extending each time so the interior stays
-// harmonic; the discrete map is not exactly Moebius-equivariant, so a few rounds take the
+// Moebius normalization on the boundary angles, the interior following as the harmonic
+// extension; the discrete map is not exactly Moebius-equivariant, so a few rounds take the
 // centre's offset down (by ~500x per round, measured); the last bit is applied to the points.
-// Returns false when `keepGoing` aborts (checked every round: each is two solves).
+// Returns false when `keepGoing` aborts (checked every round).
 bool centreByMoebius(const DiskFlattening& disk, int center,
   const std::function<bool(double)>& keepGoing, Eigen::VectorXd& theta, Eigen::MatrixXd& X)
 {
+  // The centre's image is a fixed combination of the boundary points (one solve): the rounds
+  // then need no extension, only the last one.
+  const Eigen::VectorXd weight = disk.harmonicWeights(center);
   for (int round = 0; round < 8; ++round)
   {
     if (!keepGoing(0.8 + 0.02 * round))
     {
       return false;
     }
-    const std::complex<double> a(X(center, 0), X(center, 1));
+    const Eigen::MatrixXd XB = disk.boundaryPoints(theta);
+    const std::complex<double> a(weight.dot(XB.col(0)), weight.dot(XB.col(1)));
     if (std::abs(a) < 1e-9)
     {
       break;
@@ -725,8 +739,8 @@ bool centreByMoebius(const DiskFlattening& disk, int center,
       break; // the centre is so close to the circle that angles collapse in double precision
     }
     theta = moved;
-    X = disk.extend(theta);
   }
+  X = disk.extend(theta);
   return true;
 }
 
