@@ -247,7 +247,16 @@ int main(int argc, char** argv)
   std::vector<Gaps> gaps;
   for (const auto& name : meshes)
   {
-    TriangleSoup mesh = testing::readSoup(testing::sharedMesh(name));
+    TriangleSoup mesh;
+    try
+    {
+      mesh = testing::readSoup(testing::sharedMesh(name));
+    }
+    catch (const std::exception& e)
+    {
+      std::fprintf(stderr, "%s\n", e.what());
+      return 2;
+    }
     if (subdivide > 0)
     {
       mesh = loopSubdivided(mesh, subdivide);

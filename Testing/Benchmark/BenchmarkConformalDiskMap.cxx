@@ -54,6 +54,12 @@ int main(int argc, char** argv)
   {
     if (!std::strcmp(argv[i], "--repeat") && i + 1 < argc)
       repeat = std::max(1, std::atoi(argv[++i]));
+    else if (argv[i][0] == '-')
+    {
+      std::fprintf(stderr,
+        "unknown option %s\nusage: otparam_conformal_benchmark [--repeat R] [mesh ...]\n", argv[i]);
+      return 2;
+    }
     else
       meshes.push_back(argv[i]);
   }
@@ -62,7 +68,7 @@ int main(int argc, char** argv)
       meshes.push_back(r.mesh);
 
   std::printf("Conformal disk map, median of %d runs (seconds; check = topology checks,\n"
-              "factor = Laplacian assembly + 2 Cholesky factorizations, iterate = boundary\n"
+              "factor = Laplacian assembly + Cholesky factorization(s), iterate = boundary\n"
               "angles + Moebius normalization, metrics = distortion figures + AreaDensity)\n\n",
     repeat);
   std::printf(
@@ -71,7 +77,16 @@ int main(int argc, char** argv)
     "---|---|---|\n");
   for (const auto& name : meshes)
   {
-    const SurfaceMesh mesh = testing::readMesh(testing::sharedMesh(name));
+    SurfaceMesh mesh;
+    try
+    {
+      mesh = testing::readMesh(testing::sharedMesh(name));
+    }
+    catch (const std::exception& e)
+    {
+      std::fprintf(stderr, "%s\n", e.what());
+      return 2;
+    }
     std::vector<double> check, factor, iterate, metrics, total;
     ConformalDiskMapResult map;
     DistortionFigures figures;
