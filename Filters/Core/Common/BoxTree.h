@@ -35,8 +35,11 @@ public:
     std::iota(this->Order.begin(), this->Order.end(), 0);
     if (!this->Items.empty())
     {
-      this->Nodes.reserve(2 * this->Items.size() / LeafSize + 2);
-      this->build(0, static_cast<int>(this->Items.size()));
+      const int n = static_cast<int>(this->Items.size());
+      this->Nodes.resize(static_cast<size_t>(nodeCount(n)));
+#pragma omp parallel
+#pragma omp single
+      this->build(0, n, 0);
     }
   }
 
@@ -83,9 +86,18 @@ private:
     int left = -1, right = -1;
   };
 
-  int build(int begin, int end)
+  // Nodes of the subtree over n items (the split below halves the count).
+  static int nodeCount(int n)
   {
-    Node node;
+    return n > LeafSize ? 1 + nodeCount(n / 2) + nodeCount(n - n / 2) : 1;
+  }
+
+  // Fills the subtree over Order[begin, end) from Nodes[index] on, in preorder: every node's
+  // place follows from the counts alone, so the two halves of a large node are built as
+  // parallel tasks into the same array a serial build fills (2.2M triangles: ~0.3 s serially).
+  void build(int begin, int end, int index)
+  {
+    Node& node = this->Nodes[index];
     node.begin = begin;
     node.end = end;
     node.lo = { std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity() };
@@ -98,26 +110,27 @@ private:
       node.hi = { std::max(node.hi.x, item.hi.x), std::max(node.hi.y, item.hi.y) };
       node.maximum = std::max(node.maximum, item.value);
     }
-    const int index = static_cast<int>(this->Nodes.size());
-    this->Nodes.push_back(node);
-    if (end - begin > LeafSize)
+    if (end - begin <= LeafSize)
     {
-      // Median split of the box centres along the longer side.
-      const bool alongX = node.hi.x - node.lo.x >= node.hi.y - node.lo.y;
-      auto centre = [&](int id)
-      {
-        const Item& item = this->Items[id];
-        return alongX ? item.lo.x + item.hi.x : item.lo.y + item.hi.y;
-      };
-      const int middle = begin + (end - begin) / 2;
-      std::nth_element(this->Order.begin() + begin, this->Order.begin() + middle,
-        this->Order.begin() + end, [&](int a, int b) { return centre(a) < centre(b); });
-      const int left = this->build(begin, middle);
-      const int right = this->build(middle, end);
-      this->Nodes[index].left = left;
-      this->Nodes[index].right = right;
+      return;
     }
-    return index;
+    // Median split of the box centres along the longer side.
+    const bool alongX = node.hi.x - node.lo.x >= node.hi.y - node.lo.y;
+    auto centre = [&](int id)
+    {
+      const Item& item = this->Items[id];
+      return alongX ? item.lo.x + item.hi.x : item.lo.y + item.hi.y;
+    };
+    const int middle = begin + (end - begin) / 2;
+    std::nth_element(this->Order.begin() + begin, this->Order.begin() + middle,
+      this->Order.begin() + end, [&](int a, int b) { return centre(a) < centre(b); });
+    node.left = index + 1;
+    node.right = index + 1 + nodeCount(middle - begin);
+    const int left = node.left, right = node.right;
+#pragma omp task if (end - begin > 65536) default(none) firstprivate(begin, middle, left)
+    this->build(begin, middle, left);
+    this->build(middle, end, right);
+#pragma omp taskwait
   }
 
   static bool overlaps(const Node& node, Vec2 lo, Vec2 hi)
