@@ -276,7 +276,10 @@ public:
         }
         if (row >= NB && col >= NB)
         {
-          interior.emplace_back(row - NB, col - NB, it.value());
+          if (!Combined) // else the leading block of LN
+          {
+            interior.emplace_back(row - NB, col - NB, it.value());
+          }
         }
         else if (row >= NB && col < NB)
         {

@@ -82,10 +82,11 @@ public:
   {
   }
 
-  // The callback of the next run, which aims at `target` samples. Most surfaces need one or two
+  // The callback of the next run, which aims at NumberOfSamples. Most surfaces need one or two
   // runs: each gets half the sampler's share of the progress, the runs after the second none.
-  std::function<bool(long long)> ofRun(double target)
+  std::function<bool(long long)> ofRun()
   {
+    const double target = static_cast<double>(this->Options.numberOfSamples);
     const double share = 0.45;
     const double done = this->Done;
     this->Done = std::min(0.9, this->Done + share);
@@ -1172,7 +1173,7 @@ void sampleSupport(
       }
       insertLoops(*cdt, boundary);
       if (!refineSupport(*cdt, field, options, epsilon, limit, result.capped, result.stalled,
-            progress.ofRun(target)))
+            progress.ofRun()))
       {
         return -1.0;
       }
@@ -1296,7 +1297,7 @@ void sampleConvex(
     {
       refinement =
         std::make_unique<Refinement>(field, options, epsilon, refinementLimit(options, target));
-      if (!refinement->run(progress.ofRun(target)))
+      if (!refinement->run(progress.ofRun()))
       {
         return -1.0;
       }
