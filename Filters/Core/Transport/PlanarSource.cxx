@@ -714,7 +714,7 @@ std::unique_ptr<SourceMeasure> makeUnitDiskSource()
 
 std::unique_ptr<SourceMeasure> makeTriangulatedSource(const std::vector<Vec2>& points,
   const std::vector<Triangle>& triangles, const std::vector<double>& density, std::string& error,
-  bool allowZeroDensity, bool allowNonConvex)
+  bool allowZeroDensity, bool allowNonConvex, const std::vector<Vec2>* hullCandidates)
 {
   error.clear();
   if (triangles.empty())
@@ -766,16 +766,25 @@ std::unique_ptr<SourceMeasure> makeTriangulatedSource(const std::vector<Vec2>& p
     }
     area += 0.5 * twice;
   }
-  std::vector<Vec2> usedPoints;
-  for (size_t i = 0; i < points.size(); ++i)
-  {
-    if (used[i])
-    {
-      usedPoints.push_back(points[i]);
-    }
-  }
   auto& hull = domain->hull;
-  hull = convexHull(usedPoints);
+  if (hullCandidates)
+  {
+    // The sampler's piecewise-constant densities give every triangle its own three points:
+    // the hull of all of them took 0.26 s at 6.6M points.
+    hull = convexHull(*hullCandidates);
+  }
+  else
+  {
+    std::vector<Vec2> usedPoints;
+    for (size_t i = 0; i < points.size(); ++i)
+    {
+      if (used[i])
+      {
+        usedPoints.push_back(points[i]);
+      }
+    }
+    hull = convexHull(usedPoints);
+  }
   double hullArea = 0.0;
   for (size_t k = 0; k < hull.size(); ++k)
   {

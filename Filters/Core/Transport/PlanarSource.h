@@ -65,10 +65,13 @@ std::unique_ptr<SourceMeasure> makeUnitDiskSource();
 // allowZeroDensity, negative: the sampler integrates densities that vanish on parts of the
 // domain; an OT source must not). With allowNonConvex, any tiling is accepted (the sampler
 // integrates over supports with holes; only cell integrals are then meaningful, not the
-// clipped boundaries or the inner disk).
+// clipped boundaries or the inner disk). hullCandidates, when given, holds every corner of the
+// used points' convex hull (a caller that knows its domain's hull): the hull is taken of them
+// instead of every point.
 std::unique_ptr<SourceMeasure> makeTriangulatedSource(const std::vector<Vec2>& points,
   const std::vector<Triangle>& triangles, const std::vector<double>& density, std::string& error,
-  bool allowZeroDensity = false, bool allowNonConvex = false);
+  bool allowZeroDensity = false, bool allowNonConvex = false,
+  const std::vector<Vec2>* hullCandidates = nullptr);
 
 // A source of makeTriangulatedSource with each per-point density value d replaced by map(d),
 // sharing its domain (triangles, hull, search tree): a second density over one large

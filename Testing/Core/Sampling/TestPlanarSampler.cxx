@@ -161,6 +161,15 @@ TEST(AdaptiveSampler, RejectsWhatItCannotSample)
   EXPECT_EQ(
     DensityField::create(bow, bowTriangles, std::vector<double>(7, 1.0), {}, error), nullptr);
   EXPECT_NE(error.find("touches itself at point 2"), std::string::npos) << error;
+  // Two triangles on the same side of one edge (the second folded over the first).
+  const std::vector<Vec2> fold = { { 0, 0 }, { 1, 0 }, { 0, 1 }, { 0.2, 0.2 } };
+  EXPECT_EQ(DensityField::create(fold, { { 0, 1, 2 }, { 0, 1, 3 } }, std::vector<double>(4, 1.0),
+              {}, error),
+    nullptr);
+  EXPECT_NE(
+    error.find("triangles 0 and 1 overlap (both have the edge from point 0 to point 1 on the same side)"),
+    std::string::npos)
+    << error;
   // Negative, NaN and all-zero densities.
   const PlanarMesh disk = makeDisk(3);
   std::vector<double> values(disk.points.size(), 1.0);

@@ -347,3 +347,55 @@ TEST(UnitDiskSource, VoronoiAreasMatchAPixelCount)
   }
   EXPECT_NEAR(total, Pi, 1e-13);
 }
+
+TEST(TriangulatedSource, HullFromCandidatesEqualsTheHullOfAllPoints)
+{
+  // A fan of 12 triangles around (0.1, 0.2), each with its own three points (as the sampler's
+  // piecewise-constant sources have them); the candidates are the rim's 12 points only.
+  std::vector<Vec2> rim, pts;
+  std::vector<Triangle> tris;
+  std::vector<double> f;
+  for (int k = 0; k < 12; ++k)
+  {
+    rim.push_back({ std::cos(k * Pi / 6), std::sin(k * Pi / 6) });
+  }
+  for (int k = 0; k < 12; ++k)
+  {
+    const int first = static_cast<int>(pts.size());
+    pts.insert(pts.end(), { { 0.1, 0.2 }, rim[k], rim[(k + 1) % 12] });
+    tris.push_back({ first, first + 1, first + 2 });
+    f.insert(f.end(), 3, 1.0 + k);
+  }
+  std::string error;
+  const auto all = makeTriangulatedSource(pts, tris, f, error);
+  ASSERT_TRUE(all) << error;
+  const auto fromCandidates = makeTriangulatedSource(pts, tris, f, error, false, false, &rim);
+  ASSERT_TRUE(fromCandidates) << error;
+  Vec2 lo1, hi1, lo2, hi2, c1, c2;
+  double r1 = 0.0, r2 = 0.0;
+  all->bounds(lo1, hi1);
+  fromCandidates->bounds(lo2, hi2);
+  all->innerDisk(c1, r1);
+  fromCandidates->innerDisk(c2, r2);
+  EXPECT_EQ(lo1.x, lo2.x);
+  EXPECT_EQ(hi1.y, hi2.y);
+  EXPECT_EQ(c1.x, c2.x);
+  EXPECT_EQ(c1.y, c2.y);
+  EXPECT_EQ(r1, r2);
+  EXPECT_EQ(all->totalMass(), fromCandidates->totalMass());
+  PowerCell cell;
+  cell.vertices = { { -0.3, -2 }, { 0.4, -2 }, { 0.7, 2 }, { -0.3, 2 } };
+  cell.neighbor = { -1, 3, -1, 5 };
+  const std::vector<Vec2> a = all->clippedBoundary(cell, 0.1);
+  const std::vector<Vec2> b = fromCandidates->clippedBoundary(cell, 0.1);
+  ASSERT_EQ(a.size(), b.size());
+  for (size_t k = 0; k < a.size(); ++k)
+  {
+    EXPECT_EQ(a[k].x, b[k].x);
+    EXPECT_EQ(a[k].y, b[k].y);
+  }
+  // Candidates that miss a corner give a smaller hull: the tiling no longer matches it.
+  const std::vector<Vec2> partial(rim.begin(), rim.begin() + 11);
+  EXPECT_FALSE(makeTriangulatedSource(pts, tris, f, error, false, false, &partial));
+  EXPECT_NE(error.find("not convex"), std::string::npos) << error;
+}
