@@ -248,13 +248,8 @@ int main(int argc, char** argv)
   for (const auto& name : meshes)
   {
     TriangleSoup mesh;
-    try
+    if (!testing::readOrReport(testing::sharedMesh(name), testing::readSoup, mesh))
     {
-      mesh = testing::readSoup(testing::sharedMesh(name));
-    }
-    catch (const std::exception& e)
-    {
-      std::fprintf(stderr, "%s\n", e.what());
       return 2;
     }
     if (subdivide > 0)

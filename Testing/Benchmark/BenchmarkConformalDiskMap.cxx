@@ -78,13 +78,8 @@ int main(int argc, char** argv)
   for (const auto& name : meshes)
   {
     SurfaceMesh mesh;
-    try
+    if (!testing::readOrReport(testing::sharedMesh(name), testing::readMesh, mesh))
     {
-      mesh = testing::readMesh(testing::sharedMesh(name));
-    }
-    catch (const std::exception& e)
-    {
-      std::fprintf(stderr, "%s\n", e.what());
       return 2;
     }
     std::vector<double> check, factor, iterate, metrics, total;

@@ -5,6 +5,7 @@
 #include "Mesh/MeshFile.h"
 #include "Mesh/SurfaceMesh.h"
 
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -50,6 +51,23 @@ inline TriangleSoup readSoup(const std::string& path)
     soup.triangles.push_back({ t[0], t[1], t[2] });
   }
   return soup;
+}
+
+// For the benchmark programs: `read(path)` (readMesh or readSoup) into `mesh`, or false with
+// the reason printed to stderr (the program then exits with 2).
+template <typename Mesh>
+bool readOrReport(const std::string& path, Mesh (*read)(const std::string&), Mesh& mesh)
+{
+  try
+  {
+    mesh = read(path);
+    return true;
+  }
+  catch (const std::exception& e)
+  {
+    std::fprintf(stderr, "%s\n", e.what());
+    return false;
+  }
 }
 
 } // namespace testing

@@ -11,6 +11,7 @@
 #include "Common/Geometry.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <limits>
 #include <numeric>
 #include <vector>
@@ -86,10 +87,32 @@ private:
     int left = -1, right = -1;
   };
 
-  // Nodes of the subtree over n items (the split below halves the count).
+  // Nodes of the subtree over n items (the split below halves the count), level by level: the
+  // subtrees of one level hold only two sizes, `size` and `size + 1` items, so this takes
+  // O(log n) where counting every subtree took O(n), at every node of the build.
   static int nodeCount(int n)
   {
-    return n > LeafSize ? 1 + nodeCount(n / 2) + nodeCount(n - n / 2) : 1;
+    std::int64_t size = n, count = 1, countPlusOne = 0, total = 0;
+    while (count + countPlusOne > 0)
+    {
+      total += count + countPlusOne;
+      const std::int64_t half = size / 2;
+      std::int64_t next = 0, nextPlusOne = 0; // subtrees of half and half + 1 items
+      auto split = [&](std::int64_t items, std::int64_t subtrees)
+      {
+        if (items > LeafSize)
+        {
+          (items / 2 == half ? next : nextPlusOne) += subtrees;
+          (items - items / 2 == half ? next : nextPlusOne) += subtrees;
+        }
+      };
+      split(size, count);
+      split(size + 1, countPlusOne);
+      size = half;
+      count = next;
+      countPlusOne = nextPlusOne;
+    }
+    return static_cast<int>(total);
   }
 
   // Fills the subtree over Order[begin, end) from Nodes[index] on, in preorder: every node's
