@@ -254,6 +254,7 @@ public:
         return;
       }
       const double gnorm = gradientNorm(ev.cellMass, this->Nu);
+      this->Problem.releaseForSearch();
       const double lambda = this->searchStep(h, d, gnorm);
       if (lambda <= 0.0)
       {

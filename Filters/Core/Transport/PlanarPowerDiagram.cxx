@@ -237,6 +237,14 @@ void PowerDiagram::clearCells(int n)
   Dimension = 0;
 }
 
+void PowerDiagram::releaseCellGeometry()
+{
+  std::vector<Triangle>().swap(Triangles);
+  std::vector<Vec2>().swap(PowerVertices);
+  std::vector<Vec2>().swap(PowerVertexCorrections);
+  std::vector<int>().swap(RingFace);
+}
+
 void PowerDiagram::takeTriangulationFrom(PowerDiagram& other)
 {
   if (&other != this && other.Kept)
