@@ -243,6 +243,9 @@ void PowerDiagram::releaseCellGeometry()
   std::vector<Vec2>().swap(PowerVertices);
   std::vector<Vec2>().swap(PowerVertexCorrections);
   std::vector<int>().swap(RingFace);
+  std::vector<Vec2>().swap(Sites);
+  std::vector<Height>().swap(Heights);
+  std::vector<Triangle>().swap(HiddenFace);
 }
 
 void PowerDiagram::takeTriangulationFrom(PowerDiagram& other)

@@ -40,9 +40,10 @@ public:
   // triangulation, and only one triangulation is alive per solve (1e6 Diracs: ~200 MiB each).
   void takeTriangulationFrom(PowerDiagram& other);
 
-  // Frees the cells' geometry (power vertices, rings, triangles; no cell() or triangles() until
-  // the next build) and keeps the adjacency, the hidden Diracs and the triangulation: what a
-  // Newton step's search reads of the current diagram (1e6 Diracs: ~110 MiB).
+  // Frees the cells' geometry (power vertices, rings, triangles, sites and heights, hidden
+  // Diracs' faces; no cell(), triangles() or hiddenFace() until the next build) and keeps the
+  // adjacency, which Diracs are hidden and the triangulation: what a Newton step's search reads
+  // of the current diagram (1e6 Diracs: ~170 MiB).
   void releaseCellGeometry();
 
   int size() const { return static_cast<int>(Sites.size()); }

@@ -69,14 +69,30 @@ void evaluate(const SourceMeasure& source, const std::vector<Vec2>& diracs,
   sourceBox(source, lo, hi);
   ev.cellMass.assign(n, 0.0);
   ev.moment.assign(n, Vec2{});
-  ev.coupling.clear();
+  // Couplings in row order, each row in the order of its cell's edges, so that the Newton
+  // system (and the whole run) is the same every time whatever thread integrates which cell
+  // (without a fixed order the Hessian's rounding varied from run to run, and a run could end
+  // near the tolerance one time and not the next). Each row gets a slot per neighbour above it
+  // (a convex cell has at most one edge per neighbour) and the unused slots are squeezed out
+  // afterwards: no per-thread copies and no reordering copy (1e6 Diracs: 46 MiB less at the
+  // solver's peak).
+  std::vector<int> rowStart(n + 1, 0), rowCount(n, 0);
+  if (withCouplings)
+  {
+    for (int i = 0; i < n; ++i)
+    {
+      rowStart[i + 1] = rowStart[i] +
+        static_cast<int>(std::count_if(diagram.neighborsBegin(i), diagram.neighborsEnd(i),
+          [i](int j) { return j > i; }));
+    }
+  }
+  ev.coupling.resize(rowStart[n]);
 #pragma omp parallel
   {
     PowerCell cell;
     CellIntegrals integrals;
     integrals.wantEdgeMass = withCouplings;
-    std::vector<Eigen::Triplet<double>> local;
-#pragma omp for schedule(dynamic, 512) nowait
+#pragma omp for schedule(dynamic, 512)
     for (int i = 0; i < n; ++i)
     {
       diagram.cell(i, lo, hi, cell);
@@ -90,35 +106,23 @@ void evaluate(const SourceMeasure& source, const std::vector<Vec2>& diracs,
       for (const auto& em : integrals.edgeMass)
       {
         const int j = em.first;
-        if (j > i && em.second > 0.0)
+        if (j > i && em.second > 0.0 && rowStart[i] + rowCount[i] < rowStart[i + 1])
         {
-          local.emplace_back(i, j, em.second / norm(diracs[i] - diracs[j]));
+          ev.coupling[rowStart[i] + rowCount[i]++] =
+            Eigen::Triplet<double>(i, j, em.second / norm(diracs[i] - diracs[j]));
         }
       }
     }
-#pragma omp critical
-    ev.coupling.insert(ev.coupling.end(), local.begin(), local.end());
   }
-  // Threads append their couplings in whatever order they finish: put them in row order (each
-  // row's own order is fixed; a stable counting sort), so that the Newton system, and the whole
-  // run, is the same every time. Without it the rounding of the Hessian's sums varied from run
-  // to run, and so did the iterates' last digits: a run could end near the tolerance one time
-  // and not the next, which made a failure found by the benchmark impossible to reproduce.
-  if (withCouplings)
+  std::size_t kept = 0;
+  for (int i = 0; i < n; ++i)
   {
-    std::vector<int> rowStart(n + 1, 0);
-    for (const auto& c : ev.coupling)
+    for (int k = rowStart[i]; k < rowStart[i] + rowCount[i]; ++k)
     {
-      ++rowStart[c.row() + 1];
+      ev.coupling[kept++] = ev.coupling[k];
     }
-    std::partial_sum(rowStart.begin(), rowStart.end(), rowStart.begin());
-    std::vector<Eigen::Triplet<double>> inRowOrder(ev.coupling.size());
-    for (const auto& c : ev.coupling)
-    {
-      inRowOrder[rowStart[c.row()]++] = c;
-    }
-    ev.coupling.swap(inRowOrder);
   }
+  ev.coupling.resize(kept);
   ev.minMass = n ? *std::min_element(ev.cellMass.begin(), ev.cellMass.end()) : 0.0;
   ev.emptyCells = static_cast<int>(std::count(ev.cellMass.begin(), ev.cellMass.end(), 0.0));
   timing.secondsIntegration += secondsSince(t0);
