@@ -247,14 +247,14 @@ public:
       {
         g[i] = ev.cellMass[i] - this->Nu[i];
       }
-      this->Problem.releaseTrial();
+      this->Problem.releaseBeforeSolve();
       if (!this->System.solve(n, ev.coupling, g, this->Nu, d, this->residualTarget(), this->Report))
       {
         this->Report.message = "the Newton system could not be factorized (disconnected cells?)";
         return;
       }
       const double gnorm = gradientNorm(ev.cellMass, this->Nu);
-      this->Problem.releaseForSearch();
+      this->Problem.releaseCouplings();
       const double lambda = this->searchStep(h, d, gnorm);
       if (lambda <= 0.0)
       {

@@ -43,16 +43,15 @@ public:
     const std::vector<Height>& trial, NewtonReport& timing) = 0;
   // The last trial becomes the current state.
   virtual void acceptTrial() = 0;
-  // Memory the iteration gives back (the plane, 1e6 Diracs: peak 1666 -> 1497 MiB with the
-  // first, -> 1372 MiB with both; the sphere's problems are ten times smaller and keep the
-  // defaults, which do nothing):
-  // - before each Newton solve, what the last trial left behind, so that a factorization's
-  //   memory does not add to a stale trial's;
-  virtual void releaseTrial() {}
-  // - before each step search, what the search does not read of the current state (cell
-  //   geometry, Hessian couplings): an accepted trial brings its own, and a failed search ends
-  //   the iteration.
-  virtual void releaseForSearch() {}
+  // Memory the iteration gives back (the plane, 1e6 Diracs: peak 1666 -> 1201 MiB; the sphere's
+  // problems are ten times smaller and keep the defaults, which do nothing):
+  // - before each Newton solve, what the last trial left behind and the current state's cell
+  //   geometry, which neither the solve nor the step search reads, so that a factorization's
+  //   memory does not add to them;
+  virtual void releaseBeforeSolve() {}
+  // - after it, the current Hessian couplings: an accepted trial brings its own, and a failed
+  //   search ends the iteration.
+  virtual void releaseCouplings() {}
 };
 
 struct NewtonOptions

@@ -228,19 +228,19 @@ public:
     std::swap(this->Diagram, this->TrialDiagram);
   }
 
-  // The replaced diagram's cells and the replaced evaluation (its triangulation went on with
-  // the trial).
-  void releaseTrial() override
+  // The replaced diagram and evaluation (their triangulation went on with the trial), and the
+  // current diagram's cells: the trials read its adjacency and hidden Diracs only
+  // (certainlyHidesADirac) and take its triangulation; its masses and moments stay for the
+  // result.
+  void releaseBeforeSolve() override
   {
     this->TrialDiagram = PowerDiagram();
     this->TrialEv = Evaluation();
+    this->Diagram.releaseCellGeometry();
   }
 
-  // The trials read the current diagram's adjacency and hidden Diracs only (certainlyHidesADirac)
-  // and take its triangulation; the masses and moments stay for the result.
-  void releaseForSearch() override
+  void releaseCouplings() override
   {
-    this->Diagram.releaseCellGeometry();
     std::vector<Eigen::Triplet<double>>().swap(this->Ev.coupling);
   }
 
