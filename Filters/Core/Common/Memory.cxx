@@ -4,6 +4,9 @@
 #include <iomanip>
 #include <sstream>
 #include <unistd.h>
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
 
 namespace otparam
 {
@@ -43,6 +46,13 @@ std::string checkMemory(const std::string& what, std::int64_t needed, std::int64
       << " GiB are available: free memory, use a machine with more, or decimate the input "
          "(e.g. with vtkQuadricDecimation).";
   return msg.str();
+}
+
+void returnFreedMemory()
+{
+#if defined(__GLIBC__)
+  malloc_trim(0);
+#endif
 }
 
 } // namespace otparam

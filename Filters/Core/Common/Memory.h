@@ -18,6 +18,11 @@ std::int64_t availableMemoryBytes();
 // both amounts, and what to do.
 std::string checkMemory(const std::string& what, std::int64_t needed, std::int64_t limit = 0);
 
+// Gives the heap's free pages back to the system (glibc: malloc_trim; elsewhere nothing), so that
+// large allocations that follow do not add to freed memory the allocator still holds (the OT
+// solver's Newton iterations, DampedNewton.cxx).
+void returnFreedMemory();
+
 } // namespace otparam
 
 #endif

@@ -43,7 +43,9 @@ public:
     const std::vector<Height>& trial, NewtonReport& timing) = 0;
   // The last trial becomes the current state.
   virtual void acceptTrial() = 0;
-  // Memory the iteration gives back (the plane, 1e6 Diracs: peak 1666 -> 1201 MiB; the sphere's
+  // Memory the iteration gives back (the plane, 1e6 Diracs: peak 1666 MiB, the median of three
+  // seeds, -> 1207 MiB, the largest, with the allocator trimmed around each solve as
+  // DampedNewton.cxx does; the sphere's
   // problems are ten times smaller and keep the defaults, which do nothing):
   // - before each Newton solve, what the last trial left behind and the current state's cell
   //   geometry, which neither the solve nor the step search reads, so that a factorization's
