@@ -72,37 +72,6 @@ bool isSliver(const Point& p, const Point& q, const Point& r)
   return twiceArea <= 1e-10 * longest;
 }
 
-// Progress over the refinement runs: each run gets its rough share of the first 90% of the
-// work (the runs together refine about 2.2 times the target count).
-class RefinementProgress
-{
-public:
-  explicit RefinementProgress(const SamplerOptions& options)
-    : Options(options)
-  {
-  }
-
-  // The callback of the next run, which aims at NumberOfSamples. Most surfaces need one or two
-  // runs: each gets half the sampler's share of the progress, the runs after the second none.
-  std::function<bool(long long)> ofRun()
-  {
-    const double target = static_cast<double>(this->Options.numberOfSamples);
-    const double share = 0.45;
-    const double done = this->Done;
-    this->Done = std::min(0.9, this->Done + share);
-    const SamplerOptions& options = this->Options;
-    return [&options, done, share, target](long long count)
-    {
-      return !options.progress ||
-        options.progress(std::min(0.9, done + share * std::min(1.0, count / target)));
-    };
-  }
-
-private:
-  const SamplerOptions& Options;
-  double Done = 0.0;
-};
-
 class Refinement
 {
 public:

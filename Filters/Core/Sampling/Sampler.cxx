@@ -192,6 +192,20 @@ bool refineToTargetCount(const SamplerOptions& options, double gradedArea, doubl
   return true;
 }
 
+std::function<bool(long long)> RefinementProgress::ofRun()
+{
+  const double target = static_cast<double>(this->Options.numberOfSamples);
+  const double share = 0.45;
+  const double done = this->Done;
+  this->Done = std::min(0.9, this->Done + share);
+  const SamplerOptions& options = this->Options;
+  return [&options, done, share, target](long long count)
+  {
+    return !options.progress ||
+      options.progress(std::min(0.9, done + share * std::min(1.0, count / target)));
+  };
+}
+
 RefinementAbortCheck::RefinementAbortCheck(const std::function<bool(long long)>& keepGoing)
   : KeepGoing(keepGoing)
   , Last(std::chrono::steady_clock::now())

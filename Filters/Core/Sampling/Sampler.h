@@ -109,6 +109,25 @@ std::string runawayRefinementError(
 bool refineToTargetCount(const SamplerOptions& options, double gradedArea, double tolerance,
   const std::function<double(double epsilon)>& refine, SamplerResultBase& result);
 
+// Progress over the refinement runs of refineToTargetCount: each run gets its rough share of the
+// first 90% of the sampler's work. Most densities need one or two runs: each gets half the
+// share, the runs after the second none.
+class RefinementProgress
+{
+public:
+  explicit RefinementProgress(const SamplerOptions& options)
+    : Options(options)
+  {
+  }
+
+  // The callback of the next run, which aims at NumberOfSamples: false to abort.
+  std::function<bool(long long count)> ofRun();
+
+private:
+  const SamplerOptions& Options;
+  double Done = 0.0;
+};
+
 // A refinement step's abort check: asks `keepGoing(count)` once 0.1 s has passed since it last
 // did. A step costs from a microsecond (a small density mesh) to milliseconds (bounding the
 // density over a large triangle of a 1e6-triangle mesh), so no fixed step count suits both.

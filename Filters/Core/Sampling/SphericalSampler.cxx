@@ -664,19 +664,12 @@ Candidate sampleRefined(
   }
   std::unique_ptr<Refinement> refinement;
   const double target = static_cast<double>(options.numberOfSamples);
-  double done = 0.0; // progress: most densities need one or two runs, each gets half
+  RefinementProgress progress(options);
   const auto refine = [&](double epsilon) -> double
   {
     refinement =
       std::make_unique<Refinement>(field, options, epsilon, refinementLimit(options, target));
-    const double share = 0.45, start = done;
-    done = std::min(0.9, done + share);
-    const bool finished = refinement->run(icosahedron(), {},
-      [&](long long count)
-      {
-        return !options.progress ||
-          options.progress(std::min(0.9, start + share * std::min(1.0, count / target)));
-      });
+    const bool finished = refinement->run(icosahedron(), {}, progress.ofRun());
     result.capped = refinement->capped();
     return finished ? static_cast<double>(refinement->triangulation().number_of_vertices()) : -1.0;
   };
