@@ -57,7 +57,6 @@ public:
   {
     auto t0 = Clock::now();
     const int m = n - 1;
-    auto row = [this](int i) { return i < Pinned ? i : i - 1; };
     Eigen::VectorXd rhs(m), inverseMass(m);
     for (int i = 0; i < n; ++i)
     {
@@ -109,11 +108,13 @@ public:
 private:
   using SparseMatrix = Eigen::SparseMatrix<double>;
 
+  // The system's row of Dirac i (the pinned one has none).
+  int row(int i) const { return i < Pinned ? i : i - 1; }
+
   // The Hessian's lower triangle (both factorizations read one) without the pinned row and
   // column. Its triplets (64 MiB at 1e6 Diracs) die here, before the factorization.
   SparseMatrix lowerHessian(int n, const std::vector<Eigen::Triplet<double>>& coupling) const
   {
-    auto row = [this](int i) { return i < Pinned ? i : i - 1; };
     std::vector<Eigen::Triplet<double>> entries;
     entries.reserve(coupling.size() + n);
     for (const auto& c : coupling)
@@ -241,6 +242,11 @@ public:
   {
     const int n = static_cast<int>(this->Nu.size());
     std::vector<double> g(n), d;
+    // Freed memory goes back to the system before and after each solve, or the allocator keeps
+    // it beside the factor and the trials' new diagrams (1e6 Diracs, largest peak of three
+    // seeds: 1255-1336 MiB with one of the two or neither, 1207 with both, for ~1.5 s of page
+    // faults in a 42 s solve); below CHOLMOD's sizes it is not worth the faults.
+    const bool large = n >= SparseCholesky::CholmodThreshold;
     for (int it = 0; !this->stopsAt(it); ++it)
     {
       const NewtonEvaluation& ev = this->Problem.current();
@@ -248,11 +254,6 @@ public:
       {
         g[i] = ev.cellMass[i] - this->Nu[i];
       }
-      // Freed memory goes back to the system before and after each solve, or the allocator
-      // keeps it beside the factor and the trials' new diagrams (1e6 Diracs, largest peak of
-      // three seeds: 1255-1336 MiB with one of the two or neither, 1207 with both, for ~1.5 s
-      // of page faults in a 42 s solve); below CHOLMOD's sizes it is not worth the faults.
-      const bool large = n >= SparseCholesky::CholmodThreshold;
       this->Problem.releaseBeforeSolve();
       if (large)
       {
