@@ -42,6 +42,12 @@ public:
   {
     return (a.High - b.High) + (a.Low - b.Low);
   }
+  // a - b to ~113 bits (GCC's software quad precision): for the few computations whose
+  // conditioning a long double difference does not survive.
+  __float128 preciseDifference(const Height& b) const
+  {
+    return (__float128(High) - __float128(b.High)) + (__float128(Low) - __float128(b.Low));
+  }
   friend bool operator<(const Height& a, const Height& b) { return a - b < 0.0L; }
   friend bool operator>(const Height& a, const Height& b) { return b < a; }
 
