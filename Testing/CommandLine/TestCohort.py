@@ -9,6 +9,8 @@ broken ones written here (a non-manifold fin, a closed torus of genus 1).
 - PLY, STL, legacy VTK and VTP inputs, named by a glob.
 - --timeout: a surface past it is a failed row naming the stage.
 - Usage errors: exit status 2 with a message.
+- Thread counts: a surface of 273k points (CHOLMOD's supernodal factorization on OpenBLAS in its
+  conformal map) gives the same .vtp with OMP_NUM_THREADS=1 and =2.
 
 Usage: TestCohort.py <otparam launcher> <mpiexec> <shared meshes dir> <work dir>
 """
@@ -57,8 +59,10 @@ def write_broken(cohort):
 
 
 def run(arguments, env=None):
+    environment = {k: v for k, v in os.environ.items()
+                   if k not in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS")}
     result = subprocess.run(arguments, capture_output=True, text=True,
-                            env=dict(os.environ, **(env or {})))
+                            env=dict(environment, **(env or {})))
     print(f"$ {' '.join(arguments)}  -> exit {result.returncode}\n{result.stdout}", flush=True)
     return result
 
@@ -200,6 +204,34 @@ late = summary(out_timeout).get("face_choi_bff_17k", {})
 check(result.returncode == 1 and late.get("status") == "failed"
       and "timed out" in late.get("message", "") and "stage" in late.get("message", ""),
       f"--timeout: a failed row saying where it stopped ({late.get('message')})")
+
+# ---- Thread counts: the same map with 1 and 2 OpenMP threads, at a size where the conformal map
+# factors with CHOLMOD's supernodal code on OpenBLAS (whose last bits change with its own thread
+# count, which the launcher keeps at one).
+from vtkmodules.vtkFiltersModeling import vtkLoopSubdivisionFilter
+large = os.path.join(work, "large")
+os.makedirs(large)
+face = vtkOTParamMeshReader()
+face.SetFileName(os.path.join(meshes, "face_choi_bff_17k.obj"))
+subdivide = vtkLoopSubdivisionFilter()
+subdivide.SetNumberOfSubdivisions(2)
+subdivide.SetInputConnection(face.GetOutputPort())
+writer = vtkXMLPolyDataWriter()
+writer.SetInputConnection(subdivide.GetOutputPort())
+writer.SetFileName(os.path.join(large, "face_273k.vtp"))
+writer.SetDataModeToBinary()
+writer.Write()
+maps = {}
+for threads in ("1", "2"):
+    out_threads = os.path.join(work, "out-threads-" + threads)
+    result = run([otparam, large, "-o", out_threads, "-q"], env={"OMP_NUM_THREADS": threads})
+    row = summary(out_threads).get("face_273k", {})
+    maps[threads] = read_vtp(os.path.join(out_threads, "face_273k.vtp")) \
+        if row.get("status") == "ok" else None
+check(all(maps.values()) and maps["1"].GetNumberOfPoints() > 270000
+      and not differences(maps["1"], maps["2"]),
+      "273k points, OMP_NUM_THREADS 1 and 2: the same .vtp, array for array "
+      f"({differences(maps['1'], maps['2']) if all(maps.values()) else 'not mapped'})")
 
 # ---- Usage errors.
 result = run([otparam, os.path.join(work, "no-such-dir"), "-o", os.path.join(work, "x")])
