@@ -5,6 +5,15 @@
 namespace otparam
 {
 
+// Quad precision where the compiler has it as a type of its own (GCC and Clang on x86-64:
+// software, ~113 bits); elsewhere the widest floating type (long double: quad on AArch64,
+// 64 bits of mantissa on x86).
+#if defined(__SIZEOF_FLOAT128__)
+using Quad = __float128;
+#else
+using Quad = long double;
+#endif
+
 // Heights carry more precision than the coordinates. A cell edge between Diracs at distance
 // delta moves by (error of h_i - h_j) / delta, and a small cell's mass by its perimeter times
 // that. Doubles would pin the tiny cells of Diracs 1e-4 apart to ~1e-9 relative error; long
@@ -42,11 +51,11 @@ public:
   {
     return (a.High - b.High) + (a.Low - b.Low);
   }
-  // a - b to ~113 bits (GCC's software quad precision): for the few computations whose
-  // conditioning a long double difference does not survive.
-  __float128 preciseDifference(const Height& b) const
+  // a - b in Quad: for the few computations whose conditioning a long double difference does
+  // not survive.
+  Quad preciseDifference(const Height& b) const
   {
-    return (__float128(High) - __float128(b.High)) + (__float128(Low) - __float128(b.Low));
+    return (Quad(High) - Quad(b.High)) + (Quad(Low) - Quad(b.Low));
   }
   friend bool operator<(const Height& a, const Height& b) { return a - b < 0.0L; }
   friend bool operator>(const Height& a, const Height& b) { return b < a; }

@@ -471,7 +471,7 @@ void PowerDiagram::powerVertex(int a, int b, int c, Vec2& rounded, Vec2& correct
   // such vertices; from an arbitrary corner they moved by up to ~3e-15 and a cell's mass by up
   // to 3e-10 of itself (1e6 Diracs of contrast 1e6 stalled at 2e-10). Quad precision (GCC's
   // software __float128) for these few: ~0.2% of the vertices at 1e5 Diracs of contrast 1e4.
-  using Q = __float128;
+  using Q = Quad;
   const Q qax = Sites[a].x, qay = Sites[a].y;
   const Q qux = qax - Q(Sites[b].x), quy = qay - Q(Sites[b].y);
   const Q qvx = qax - Q(Sites[c].x), qvy = qay - Q(Sites[c].y);
