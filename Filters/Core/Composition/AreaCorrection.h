@@ -34,6 +34,17 @@ struct PlaneGeometry
     return { 0.5 * d.y, -0.5 * d.x };
   }
   static Point move(Frame, Point p, Vec2 step) { return p + step; }
+  // The sum of the triangles' signed areas: the area inside the boundary loop (shoelace, in the
+  // loop's order), whatever the interior vertices do.
+  static double totalArea(const std::vector<Point>& points, const std::vector<int>& boundaryLoop)
+  {
+    double twice = 0.0;
+    for (size_t k = 0; k < boundaryLoop.size(); ++k)
+    {
+      twice += cross(points[boundaryLoop[k]], points[boundaryLoop[(k + 1) % boundaryLoop.size()]]);
+    }
+    return 0.5 * std::abs(twice);
+  }
 };
 
 // The unit sphere: spherical triangle areas (Eriksson), steps in the tangent plane pushed back
@@ -65,6 +76,11 @@ struct SphereGeometry
   {
     return normalized(p + step.x * f.e1 + step.y * f.e2);
   }
+  // The triangles of an untangled map (the only ones corrected) cover the sphere once.
+  static double totalArea(const std::vector<Point>&, const std::vector<int>&)
+  {
+    return 4.0 * 3.14159265358979323846;
+  }
 };
 
 // Step 3: Gauss-Seidel sweeps of per-vertex Gauss-Newton steps on
@@ -81,6 +97,7 @@ public:
   AreaCorrectionOn(const SurfaceMesh& surface, const std::vector<int>& boundaryLoop,
     const VertexStars& stars, const std::vector<double>& surfaceFraction)
     : Surface(surface)
+    , BoundaryLoop(boundaryLoop)
     , Stars(stars)
     , SurfaceFraction(surfaceFraction)
     , OnBoundary(surface.points.size(), 0)
@@ -150,17 +167,9 @@ public:
   // Returns the number of vertices moved.
   std::int64_t sweep(std::vector<Point>& uv)
   {
-    // The areas in parallel, summed in one order (the same bits at any thread count).
-    const auto& triangles = this->Surface.triangles;
-    const auto count = static_cast<std::int64_t>(triangles.size());
-    this->Areas.resize(triangles.size());
-#pragma omp parallel for schedule(static)
-    for (std::int64_t k = 0; k < count; ++k)
-    {
-      const Triangle& t = triangles[k];
-      this->Areas[k] = Geometry::area(uv[t[0]], uv[t[1]], uv[t[2]]);
-    }
-    this->TotalArea = std::accumulate(this->Areas.begin(), this->Areas.end(), 0.0);
+    // From the boundary alone: a sum over every triangle was ~7% of a sweep (a third of a
+    // polishing sweep) at 273k points.
+    this->TotalArea = Geometry::totalArea(uv, this->BoundaryLoop);
     std::vector<char> moved(uv.size(), 0);
     for (const std::vector<int>& vertices : this->ColourClasses)
     {
@@ -346,11 +355,11 @@ private:
   }
 
   const SurfaceMesh& Surface;
+  const std::vector<int> BoundaryLoop;
   const VertexStars& Stars;
   const std::vector<double>& SurfaceFraction;
   std::vector<char> OnBoundary, Active;
   std::vector<std::vector<int>> ColourClasses;
-  std::vector<double> Areas; // scratch of sweep()
   double TotalArea = 0.0;
 };
 
