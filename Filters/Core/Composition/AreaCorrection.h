@@ -9,7 +9,6 @@
 #include "Composition/CompositionOptions.h"
 
 #include <limits>
-#include <numeric>
 #include <type_traits>
 
 namespace otparam
