@@ -95,8 +95,7 @@ public:
 
   AreaCorrectionOn(const SurfaceMesh& surface, const std::vector<int>& boundaryLoop,
     const VertexStars& stars, const std::vector<double>& surfaceFraction)
-    : Surface(surface)
-    , BoundaryLoop(boundaryLoop)
+    : BoundaryLoop(boundaryLoop)
     , Stars(stars)
     , SurfaceFraction(surfaceFraction)
     , OnBoundary(surface.points.size(), 0)
@@ -353,8 +352,7 @@ private:
     return false;
   }
 
-  const SurfaceMesh& Surface;
-  const std::vector<int> BoundaryLoop;
+  const std::vector<int> BoundaryLoop; // a copy: the sphere's caller passes a temporary {}
   const VertexStars& Stars;
   const std::vector<double>& SurfaceFraction;
   std::vector<char> OnBoundary, Active;

@@ -247,6 +247,13 @@ public:
     // seeds: 1255-1336 MiB with one of the two or neither, 1207 with both, for ~1.5 s of page
     // faults in a 42 s solve); below CHOLMOD's sizes it is not worth the faults.
     const bool large = n >= SparseCholesky::CholmodThreshold;
+    auto trim = [large]
+    {
+      if (large)
+      {
+        returnFreedMemory();
+      }
+    };
     for (int it = 0; !this->stopsAt(it); ++it)
     {
       const NewtonEvaluation& ev = this->Problem.current();
@@ -255,10 +262,7 @@ public:
         g[i] = ev.cellMass[i] - this->Nu[i];
       }
       this->Problem.releaseBeforeSolve();
-      if (large)
-      {
-        returnFreedMemory();
-      }
+      trim();
       if (!this->System.solve(n, ev.coupling, g, this->Nu, d, this->residualTarget(), this->Report))
       {
         this->Report.message = "the Newton system could not be factorized (disconnected cells?)";
@@ -266,10 +270,7 @@ public:
       }
       const double gnorm = gradientNorm(ev.cellMass, this->Nu);
       this->Problem.releaseCouplings();
-      if (large)
-      {
-        returnFreedMemory();
-      }
+      trim();
       const double lambda = this->searchStep(h, d, gnorm);
       if (lambda <= 0.0)
       {

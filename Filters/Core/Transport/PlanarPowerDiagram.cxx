@@ -427,21 +427,26 @@ namespace
 // precision (powerVertex).
 constexpr long double IllConditionedSine2 = 1e-3L;
 
-// x = y_a + z with <z, u> = r1 and <z, v> = r2 (Cramer's rule), in the precision of T.
+// <x, y_a - y_b> = h_a - h_b and <x, y_a - y_c> = h_a - h_c with x = y_a + z (Cramer's rule),
+// in the precision of T; the result rounded to double and what the rounding left out.
 template <typename T>
-void solveVertex(T ax, T ay, T ux, T uy, T vx, T vy, T r1, T r2, T& x, T& y)
+void solveVertex(Vec2 ya, Vec2 yb, Vec2 yc, T hab, T hac, Vec2& rounded, Vec2& correction)
 {
+  const T ax = ya.x, ay = ya.y;
+  const T ux = ax - T(yb.x), uy = ay - T(yb.y);
+  const T vx = ax - T(yc.x), vy = ay - T(yc.y);
+  const T r1 = hab - (ax * ux + ay * uy), r2 = hac - (ax * vx + ay * vy);
   const T det = ux * vy - uy * vx;
-  x = ax + (r1 * vy - r2 * uy) / det;
-  y = ay + (ux * r2 - vx * r1) / det;
+  const T x = ax + (r1 * vy - r2 * uy) / det, y = ay + (ux * r2 - vx * r1) / det;
+  rounded = { static_cast<double>(x), static_cast<double>(y) };
+  correction = { static_cast<double>(x - T(rounded.x)), static_cast<double>(y - T(rounded.y)) };
 }
 } // namespace
 
 void PowerDiagram::powerVertex(int a, int b, int c, Vec2& rounded, Vec2& correction) const
 {
-  // <x, y_a - y_b> = h_a - h_b and <x, y_a - y_c> = h_a - h_c, with x = y_a + z, in long
-  // double: the right-hand sides are differences of nearly equal heights. The base a is the
-  // corner opposite the longest side, whose two bisectors cross at the widest angle.
+  // In long double: the right-hand sides are differences of nearly equal heights. The base a is
+  // the corner opposite the longest side, whose two bisectors cross at the widest angle.
   const Vec2 sab = Sites[a] - Sites[b], sbc = Sites[b] - Sites[c], sca = Sites[c] - Sites[a];
   const double ab = dot(sab, sab), bc = dot(sbc, sbc), ca = dot(sca, sca);
   if (ab >= bc && ab >= ca)
@@ -453,17 +458,13 @@ void PowerDiagram::powerVertex(int a, int b, int c, Vec2& rounded, Vec2& correct
     std::swap(a, b);
   }
   using LD = long double;
-  const LD ax = Sites[a].x, ay = Sites[a].y;
-  const LD ux = ax - Sites[b].x, uy = ay - Sites[b].y;
-  const LD vx = ax - Sites[c].x, vy = ay - Sites[c].y;
+  const LD ux = LD(Sites[a].x) - Sites[b].x, uy = LD(Sites[a].y) - Sites[b].y;
+  const LD vx = LD(Sites[a].x) - Sites[c].x, vy = LD(Sites[a].y) - Sites[c].y;
   const LD det = ux * vy - uy * vx;
   if (det * det >= IllConditionedSine2 * (ux * ux + uy * uy) * (vx * vx + vy * vy))
   {
-    LD x, y;
-    solveVertex<LD>(ax, ay, ux, uy, vx, vy, (Heights[a] - Heights[b]) - (ax * ux + ay * uy),
-      (Heights[a] - Heights[c]) - (ax * vx + ay * vy), x, y);
-    rounded = { static_cast<double>(x), static_cast<double>(y) };
-    correction = { static_cast<double>(x - rounded.x), static_cast<double>(y - rounded.y) };
+    solveVertex<LD>(Sites[a], Sites[b], Sites[c], Heights[a] - Heights[b], Heights[a] - Heights[c],
+      rounded, correction);
     return;
   }
   // Nearly parallel bisectors: the long double rounding of the right-hand sides, over the sine
@@ -471,16 +472,8 @@ void PowerDiagram::powerVertex(int a, int b, int c, Vec2& rounded, Vec2& correct
   // such vertices; from an arbitrary corner they moved by up to ~3e-15 and a cell's mass by up
   // to 3e-10 of itself (1e6 Diracs of contrast 1e6 stalled at 2e-10). Quad precision (GCC's
   // software __float128) for these few: ~0.2% of the vertices at 1e5 Diracs of contrast 1e4.
-  using Q = Quad;
-  const Q qax = Sites[a].x, qay = Sites[a].y;
-  const Q qux = qax - Q(Sites[b].x), quy = qay - Q(Sites[b].y);
-  const Q qvx = qax - Q(Sites[c].x), qvy = qay - Q(Sites[c].y);
-  Q x, y;
-  solveVertex<Q>(qax, qay, qux, quy, qvx, qvy,
-    Heights[a].preciseDifference(Heights[b]) - (qax * qux + qay * quy),
-    Heights[a].preciseDifference(Heights[c]) - (qax * qvx + qay * qvy), x, y);
-  rounded = { static_cast<double>(x), static_cast<double>(y) };
-  correction = { static_cast<double>(x - Q(rounded.x)), static_cast<double>(y - Q(rounded.y)) };
+  solveVertex<Quad>(Sites[a], Sites[b], Sites[c], Heights[a].preciseDifference(Heights[b]),
+    Heights[a].preciseDifference(Heights[c]), rounded, correction);
 }
 
 void PowerDiagram::cell(int i, Vec2 lo, Vec2 hi, PowerCell& out) const
