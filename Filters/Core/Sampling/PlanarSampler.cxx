@@ -439,8 +439,9 @@ constexpr double LargestSteeredMassChange = 0.5;
 constexpr double CellAreaPerOffset = 3.4641016151377544;
 
 // One Jacobi step of "every cell has the mean mass" on the offsets of the power cells measured
-// with the density g^power; equalizedPower 1 equalizes g-masses, 0 areas.
-void steerOffsets(const DensityField& field, double power, double equalizedPower,
+// with the density g^power; equalizedPower 1 equalizes g-masses, 0 areas. Returns the
+// coefficient of variation of the masses it equalizes (as estimated, before the step).
+double steerOffsets(const DensityField& field, double power, double equalizedPower,
   const CellMeasures& cells, std::vector<double>& offset)
 {
   const size_t n = offset.size();
@@ -463,8 +464,10 @@ void steerOffsets(const DensityField& field, double power, double equalizedPower
   // samples (and the whole map) in their last digits.
   const double mean =
     std::accumulate(equalized.begin(), equalized.end(), 0.0) / static_cast<double>(n);
+  double variance = 0.0;
   for (size_t i = 0; i < n; ++i)
   {
+    variance += (equalized[i] - mean) * (equalized[i] - mean);
     if (equalized[i] > 0.0)
     {
       const double change =
@@ -472,23 +475,37 @@ void steerOffsets(const DensityField& field, double power, double equalizedPower
       offset[i] += change * area[i] / CellAreaPerOffset;
     }
   }
+  return std::sqrt(variance / static_cast<double>(n)) / mean;
 }
 
-// Returns false with `error` set when the density cannot be made a source, or with it empty
-// when the progress callback aborts.
-bool relax(const DensityField& field, const SamplerOptions& options, const SourceMeasure& source,
-  std::vector<Vec2>& samples, const std::vector<char>& onBoundary, std::string& error)
+// What the relaxation did: ran, gave up at once because the unrelaxed masses already spread by
+// more than it can help with (see relaxWhereItPays), or was stopped (an error or an abort).
+enum class Relaxation
+{
+  Done,
+  NotWorthIt,
+  Stopped
+};
+// The unrelaxed masses' spread above which adaptive sampling does not relax.
+constexpr double EvenEnough = 0.3;
+
+// Stopped with `error` set when the density cannot be made a source, or with it empty when the
+// progress callback aborts. Adaptive sampling gives up after the first integration (samples
+// untouched) when it estimates the unrelaxed g-masses to spread by more than EvenEnough.
+Relaxation relax(const DensityField& field, const SamplerOptions& options,
+  const SourceMeasure& source, std::vector<Vec2>& samples, const std::vector<char>& onBoundary,
+  int& steps, std::string& error)
 {
   double power = 0.0;
   if (options.mode == SamplingMode::Adaptive)
   {
     power = options.sizeRule == SizeRule::SqrtDensity ? 2.0 : 4.0;
   }
-  const auto density =
-    withMappedDensity(source, [power](double g) { return std::pow(g, power); }, error, true);
+  const auto density = withMappedDensity(
+    source, [power](double g) { return std::pow(g, power); }, error, true);
   if (!density)
   {
-    return false;
+    return Relaxation::Stopped;
   }
   const bool steered =
     !(options.mode == SamplingMode::Adaptive && options.sizeRule == SizeRule::Density);
@@ -501,7 +518,7 @@ bool relax(const DensityField& field, const SamplerOptions& options, const Sourc
     // 1M triangles); error stays empty then.
     if (options.progress && !options.progress(0.9))
     {
-      return false;
+      return Relaxation::Stopped;
     }
     const bool plainStep = !steered || step == RelaxationSteps - 1;
     for (size_t i = 0; i < samples.size(); ++i)
@@ -509,9 +526,14 @@ bool relax(const DensityField& field, const SamplerOptions& options, const Sourc
       heights[i] = 0.5 * dot(samples[i], samples[i]) - (plainStep ? 0.0 : offset[i]);
     }
     const CellMeasures cells = computeCellMeasures(*density, samples, heights);
+    ++steps;
     if (!plainStep)
     {
-      steerOffsets(field, power, equalizedPower, cells, offset);
+      const double spread = steerOffsets(field, power, equalizedPower, cells, offset);
+      if (step == 0 && options.mode == SamplingMode::Adaptive && spread > EvenEnough)
+      {
+        return Relaxation::NotWorthIt;
+      }
     }
     for (size_t i = 0; i < samples.size(); ++i)
     {
@@ -523,24 +545,26 @@ bool relax(const DensityField& field, const SamplerOptions& options, const Sourc
       }
     }
   }
-  return true;
+  return Relaxation::Done;
 }
 
-// The relaxation and the abort check after it, for both sampling paths; false with the result's
-// status set (an error, or aborted) when either stops the run.
-bool relaxThenCheck(const DensityField& field, const SamplerOptions& options,
+// The relaxation and the abort check after it, for both sampling paths; Stopped with the
+// result's status set (an error, or aborted) when either stops the run.
+Relaxation relaxThenCheck(const DensityField& field, const SamplerOptions& options,
   const SourceMeasure& source, std::vector<Vec2>& samples, const std::vector<char>& onBoundary,
   SamplerResult& result)
 {
   std::string error;
-  if (!relax(field, options, source, samples, onBoundary, error))
+  const Relaxation outcome =
+    relax(field, options, source, samples, onBoundary, result.relaxationSteps, error);
+  if (outcome == Relaxation::Stopped)
   {
     result.status.error = error;
     result.status.aborted = error.empty();
-    return false;
+    return outcome;
   }
   result.status.aborted = options.progress && !options.progress(0.9);
-  return !result.status.aborted;
+  return result.status.aborted ? Relaxation::Stopped : outcome;
 }
 
 struct Candidate
@@ -615,26 +639,52 @@ Candidate finishCandidate(const DensityField& field, const SamplerOptions& optio
   return measuredCandidate(source, std::move(points), std::move(triangles), sourceMass);
 }
 
-// The relaxed samples, unless their masses spread by more than 0.3 and the unrelaxed ones are
-// more even (see sampleDensity), become the result.
-void adoptCandidate(SamplerResult& result, Candidate best, bool tryUnrelaxed,
+void adopt(SamplerResult& result, Candidate c, bool relaxed)
+{
+  result.relaxed = relaxed;
+  result.secondsMasses = c.secondsMasses;
+  result.samples = std::move(c.samples);
+  result.triangles = std::move(c.triangles);
+  result.mass = std::move(c.mass);
+  result.massCoefficientOfVariation = c.coefficientOfVariation;
+}
+
+// Lloyd steps even out the masses of densities the samples resolve, but where the density
+// varies faster than the samples can follow (a conformal image with crowded or singular parts)
+// they make things worse. Adaptive sampling keeps the relaxed samples when their masses spread
+// by at most EvenEnough (0.3), or by less than the unrelaxed ones; and it does not relax at all
+// when its first integration estimates the unrelaxed masses to spread by more than that: on
+// the shared meshes such a relaxation made them more even in none of the 8 cases
+// (hand_choi_53k 0.33 -> 0.40, face_maxplanck_partial_32k 0.44 -> 1.16, ...) and cost three
+// more integrations over the density mesh and a candidate, 40-50% of the sampler (relaxed:
+// bust_aphrodite_56k 0.28 -> 0.25, hemisphere_2k 0.17 -> 0.10, the face at 1.09M points and
+// 21599 samples 0.25 -> 0.21). Uniform sampling (a sampling of the area) always relaxes.
+// makeRelaxed relaxes and finishes a candidate; makeUnrelaxed finishes the unrelaxed samples.
+void relaxWhereItPays(SamplerResult& result, bool adaptive,
+  const std::function<Relaxation(Candidate&)>& makeRelaxed,
   const std::function<Candidate()>& makeUnrelaxed)
 {
-  result.relaxed = true;
-  if (tryUnrelaxed && best.coefficientOfVariation > 0.3)
+  Candidate relaxed;
+  const Relaxation outcome = makeRelaxed(relaxed);
+  if (outcome == Relaxation::Stopped)
+  {
+    return;
+  }
+  if (outcome == Relaxation::NotWorthIt)
+  {
+    adopt(result, makeUnrelaxed(), false);
+    return;
+  }
+  if (adaptive && relaxed.coefficientOfVariation > EvenEnough)
   {
     Candidate unrelaxed = makeUnrelaxed();
-    if (unrelaxed.coefficientOfVariation < best.coefficientOfVariation)
+    if (unrelaxed.coefficientOfVariation < relaxed.coefficientOfVariation)
     {
-      best = std::move(unrelaxed);
-      result.relaxed = false;
+      adopt(result, std::move(unrelaxed), false);
+      return;
     }
   }
-  result.secondsMasses = best.secondsMasses;
-  result.samples = std::move(best.samples);
-  result.triangles = std::move(best.triangles);
-  result.mass = std::move(best.mass);
-  result.massCoefficientOfVariation = best.coefficientOfVariation;
+  adopt(result, std::move(relaxed), true);
 }
 
 // ---- Domains that are not convex (holes, several components, concavities): the same graded
@@ -1141,8 +1191,8 @@ void sampleSupport(
         boundarySamples += static_cast<long long>(boundary.back().size());
       }
       insertLoops(*cdt, boundary);
-      if (!refineSupport(*cdt, field, options, epsilon, limit, result.capped, result.stalled,
-            progress.ofRun()))
+      if (!refineSupport(
+            *cdt, field, options, epsilon, limit, result.capped, result.stalled, progress.ofRun()))
       {
         return -1.0;
       }
@@ -1181,24 +1231,30 @@ void sampleSupport(
     result.status.error = error;
     return;
   }
-  // Lloyd steps on every sample, the boundary ones held fixed.
-  std::vector<Vec2> all;
-  std::vector<char> fixed;
-  for (const auto& loop : loops)
-  {
-    all.insert(all.end(), loop.begin(), loop.end());
-    fixed.insert(fixed.end(), loop.size(), 1);
-  }
-  all.insert(all.end(), interior.begin(), interior.end());
-  fixed.insert(fixed.end(), interior.size(), 0);
-  if (!relaxThenCheck(field, options, *source, all, fixed, result))
-  {
-    return;
-  }
-  const std::vector<Vec2> relaxed(
-    all.begin() + static_cast<long>(all.size() - interior.size()), all.end());
-  adoptCandidate(result,
-    finishSupportCandidate(field, options, *source, loops, relaxed, result.sourceMass), graded,
+  relaxWhereItPays(
+    result, graded,
+    [&](Candidate& relaxed)
+    {
+      // Lloyd steps on every sample, the boundary ones held fixed.
+      std::vector<Vec2> all;
+      std::vector<char> fixed;
+      for (const auto& loop : loops)
+      {
+        all.insert(all.end(), loop.begin(), loop.end());
+        fixed.insert(fixed.end(), loop.size(), 1);
+      }
+      all.insert(all.end(), interior.begin(), interior.end());
+      fixed.insert(fixed.end(), interior.size(), 0);
+      const Relaxation outcome = relaxThenCheck(field, options, *source, all, fixed, result);
+      if (outcome == Relaxation::Done)
+      {
+        const std::vector<Vec2> interiorRelaxed(
+          all.begin() + static_cast<long>(all.size() - interior.size()), all.end());
+        relaxed = finishSupportCandidate(
+          field, options, *source, loops, interiorRelaxed, result.sourceMass);
+      }
+      return outcome;
+    },
     [&] {
       return finishSupportCandidate(field, options, *source, loops, interior, result.sourceMass);
     });
@@ -1295,14 +1351,8 @@ void sampleConvex(
       onBoundary.push_back(hull.count(&*v) ? 1 : 0);
     }
   }
-  std::string error;
-  // Lloyd steps even out the masses of well-resolved densities, but on a density that varies
-  // faster than the samples can follow (a conformal image with singular corners sampled by a
-  // few hundred points) they can make things worse: when the relaxed masses spread by more
-  // than 0.3, the unrelaxed samples are tried too and the more even set is kept (Uniform mode
-  // always relaxes: it is a sampling of the area).
   const std::vector<Vec2> refined = result.samples;
-  std::vector<Vec2> relaxed = refined;
+  std::string error;
   // The relaxation's first abort check follows this build (~0.1 s at 5e5 density triangles).
   const auto source = field.makeSource(error);
   if (!source)
@@ -1310,12 +1360,19 @@ void sampleConvex(
     result.status.error = error;
     return;
   }
-  if (!relaxThenCheck(field, options, *source, relaxed, onBoundary, result))
-  {
-    return;
-  }
-  adoptCandidate(result, finishCandidate(field, options, *source, relaxed, result.sourceMass),
-    options.mode == SamplingMode::Adaptive,
+  relaxWhereItPays(
+    result, options.mode == SamplingMode::Adaptive,
+    [&](Candidate& relaxed)
+    {
+      std::vector<Vec2> samples = refined;
+      const Relaxation outcome =
+        relaxThenCheck(field, options, *source, samples, onBoundary, result);
+      if (outcome == Relaxation::Done)
+      {
+        relaxed = finishCandidate(field, options, *source, samples, result.sourceMass);
+      }
+      return outcome;
+    },
     [&] { return finishCandidate(field, options, *source, refined, result.sourceMass); });
 }
 } // namespace

@@ -60,6 +60,9 @@ struct SamplerResultBase
 
 struct SamplerResult : SamplerResultBase
 {
+  // Integrations over the density the relaxation ran: all its steps, or 1 when the first showed
+  // the unrelaxed masses too uneven for it to help (adaptive sampling then keeps them as they are).
+  int relaxationSteps = 0;
   std::vector<Vec2> samples;
   std::vector<Triangle> triangles; // Delaunay triangulation of the samples (mesh triangles in
                                    // MeshVertices mode)
@@ -69,10 +72,10 @@ struct SamplerResult : SamplerResultBase
 std::string checkSamplerOptions(const SamplerOptions& options);
 
 // The density scaled to a largest value in [1/4, 1) by an even power of two (positive values
-// stay at least the smallest normal double): only ratios of the density matter to a sampler (the threshold is calibrated to the
-// target count, the masses are normalized to the source's), and its relaxation integrates
-// g^2 or g^4, which overflows for values above 1e77 and made NaN samples (a contrast of 1e300,
-// found by the fuzzer). Zero stays zero, so the support is unchanged.
+// stay at least the smallest normal double): only ratios of the density matter to a sampler (the
+// threshold is calibrated to the target count, the masses are normalized to the source's), and its
+// relaxation integrates g^2 or g^4, which overflows for values above 1e77 and made NaN samples (a
+// contrast of 1e300, found by the fuzzer). Zero stays zero, so the support is unchanged.
 std::vector<double> relativeDensity(const std::vector<double>& values);
 
 // Standard deviation over mean of the masses (0 for no masses).
