@@ -43,6 +43,7 @@
 #include <numeric>
 #include <queue>
 #include <sstream>
+#include <string>
 
 namespace otparam
 {
@@ -262,8 +263,9 @@ public:
   {
     Combined = NI > 0 && factorTogether(NB, N);
     // Combined: interior vertices (local NB..N-1) first, then boundary vertices 1..NB-1.
-    auto neumannRow = [this](int local)
-    { return !Combined ? local - 1 : local >= NB ? local - NB : NI + local - 1; };
+    auto neumannRow = [this](int local) {
+      return !Combined ? local - 1 : local >= NB ? local - NB : NI + local - 1;
+    };
     std::vector<Eigen::Triplet<double>> interior, pinned;
     for (int col = 0; col < N; ++col)
     {
@@ -824,7 +826,10 @@ ConformalDiskMapResult computeWithLaplacian(const SurfaceMesh& mesh,
     : *std::min_element(boundaryLoop.begin(), boundaryLoop.end());
   if (static_cast<size_t>(nv) == boundaryLoop.size())
   {
-    result.status.error = "the surface has no interior vertex to send to the disk's centre";
+    result.status.error = "the surface has no interior vertex to send to the disk's centre (all " +
+      std::to_string(nv) +
+      " of its points are on its boundary): subdivide it until it has interior points (e.g. "
+      "vtkLoopSubdivisionFilter, ParaView's Loop Subdivision)";
     return result;
   }
 

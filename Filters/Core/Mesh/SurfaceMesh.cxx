@@ -155,7 +155,8 @@ public:
         msg << "triangles " << this->Edges[e - 1].second / 3 << " and " << t
             << " both use the edge (" << id(a) << ", " << id(b)
             << ") in the same direction: the surface is non-manifold there or not "
-               "consistently oriented";
+               "consistently oriented (vtkPolyDataNormals with ConsistencyOn, ParaView's "
+               "Generate Surface Normals, orients a manifold surface consistently)";
         return msg.str();
       }
     }
@@ -358,6 +359,14 @@ std::string analyzeSurface(
   return {};
 }
 
+namespace
+{
+// What to try when a scan comes with debris (small separate pieces).
+constexpr const char* KeepLargestComponent =
+  " (to keep the largest: vtkPolyDataConnectivityFilter with SetExtractionModeToLargestRegion, "
+  "ParaView's Connectivity with Extraction Mode 'Extract Largest Region')";
+} // namespace
+
 std::string checkDiskTopology(const SurfaceMesh& mesh, std::vector<int>& boundaryLoop,
   const std::vector<std::int64_t>* reportedIds)
 {
@@ -374,7 +383,7 @@ std::string checkDiskTopology(const SurfaceMesh& mesh, std::vector<int>& boundar
   if (topology.components != 1)
   {
     msg << "the surface has " << topology.components
-        << " connected components; a disk-like surface needs exactly 1";
+        << " connected components; a disk-like surface needs exactly 1" << KeepLargestComponent;
   }
   else if (loops == 0)
   {
@@ -412,7 +421,8 @@ std::string checkSphereTopology(
   if (topology.components != 1)
   {
     msg << "the surface has " << topology.components
-        << " connected components; the sphere needs exactly 1 (one closed surface of genus 0)";
+        << " connected components; the sphere needs exactly 1 (one closed surface of genus 0)"
+        << KeepLargestComponent;
   }
   else if (loops > 0)
   {
