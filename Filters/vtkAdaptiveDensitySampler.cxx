@@ -203,6 +203,9 @@ void WriteSamples(const std::vector<Point>& samples,
   AddScalar(output, "SourceMass", result.sourceMass);
   AddIntScalar(output, "RefinementRuns", result.refinementRuns);
   AddIntScalar(output, "Capped", result.capped ? 1 : 0);
+  // 1 when the relaxed samples were kept, 0 when the unrelaxed ones were (more even masses, or
+  // a density varying faster than the samples follow: then adaptive sampling does not relax).
+  AddIntScalar(output, "Relaxed", result.relaxed ? 1 : 0);
   AddScalar(output, "SecondsRefinement", result.secondsRefinement);
   AddScalar(output, "SecondsMasses", result.secondsMasses);
 }

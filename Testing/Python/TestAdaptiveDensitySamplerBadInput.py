@@ -366,7 +366,7 @@ def good_run(name, data, settings=None, expect_warnings=()):
           and out.GetFieldData().GetArray("NumberOfSamples").IsA("vtkIntArray"),
           f"{name}: field data NumberOfSamples (int) = {n}")
     for array in ("MassCoefficientOfVariation", "MinimumAngle", "Epsilon", "RefinementRuns",
-                  "Capped", "SecondsRefinement", "SecondsMasses", "SecondsTotal"):
+                  "Capped", "Relaxed", "SecondsRefinement", "SecondsMasses", "SecondsTotal"):
         check(field_value(out, array) is not None, f"{name}: field data {array}")
     check(all(abs(out.GetPoint(i)[2]) == 0.0 for i in range(n)), f"{name}: samples at z = 0")
     check(out.GetNumberOfPolys() == out.GetNumberOfCells() > 0
