@@ -399,7 +399,17 @@ std::string transportNotConvergedWarning(const NewtonReport& result, const OTOpt
   msg << "Not converged after " << result.iterations
       << " Newton iterations (MaximumNumberOfIterations = " << options.maximumNumberOfIterations
       << "): relative error " << result.relativeError << " > Tolerance " << options.tolerance
-      << ". " << result.message << " The outputs hold this last iterate, with Converged = 0.";
+      << ". ";
+  // Out of iterations, the solver's own message says no more than this one.
+  if (result.iterations >= options.maximumNumberOfIterations)
+  {
+    msg << "Raise MaximumNumberOfIterations.";
+  }
+  else if (!result.message.empty())
+  {
+    msg << result.message << (result.message.back() == '.' ? "" : ".");
+  }
+  msg << " The outputs hold this last iterate, with Converged = 0.";
   return msg.str();
 }
 
