@@ -65,6 +65,9 @@ def parse_arguments(argv):
                         help="skip the composition's area-correction sweeps")
     parser.add_argument("--correction-sweeps", type=int, default=200, metavar="K",
                         help="area-correction sweeps at most (default 200)")
+    parser.add_argument("--thorough-correction", action="store_true",
+                        help="a thorough area correction: lower area and angle distortion for "
+                             "about twice the correction's time")
     parser.add_argument("--obj", action="store_true",
                         help="also write <name>.obj with the texture coordinates (disk "
                              "coordinates, or longitude/latitude on the sphere) for Blender, "
@@ -99,7 +102,9 @@ def mapping_parameters(arguments):
             "tolerance": arguments.tolerance, "max_iterations": arguments.max_iterations,
             "sampling": arguments.sampling, "fill_holes": not arguments.no_fill_holes,
             "area_correction": not arguments.no_area_correction,
-            "correction_sweeps": arguments.correction_sweeps}
+            "correction_sweeps": arguments.correction_sweeps,
+            # Only when set: the default's key (and earlier runs' --resume) stays as it was.
+            **({"thorough_correction": True} if arguments.thorough_correction else {})}
 
 
 def parameters_key(parameters):
@@ -267,6 +272,7 @@ def make_filter(arguments):
     param.SetFillHoles(not arguments.no_fill_holes)
     param.SetAreaCorrection(not arguments.no_area_correction)
     param.SetMaximumCorrectionSweeps(arguments.correction_sweeps)
+    param.SetThoroughAreaCorrection(arguments.thorough_correction)
     return param
 
 

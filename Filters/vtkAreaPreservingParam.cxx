@@ -39,6 +39,10 @@ otparam::AreaPreservingOptions MakeOptions(vtkAreaPreservingParam* self)
   options.composition.correctAreas =
     self->GetAreaCorrection() && self->GetMaximumCorrectionSweeps() > 0;
   options.composition.maximumCorrectionSweeps = self->GetMaximumCorrectionSweeps();
+  if (self->GetThoroughAreaCorrection())
+  {
+    otparam::makeCorrectionThorough(options.composition);
+  }
   options.progress = [self](const char* stage, double fraction)
   {
     self->SetProgressText(stage);
@@ -346,5 +350,6 @@ void vtkAreaPreservingParam::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "FillHoles: " << this->FillHoles << "\n";
   os << indent << "AreaCorrection: " << this->AreaCorrection << "\n";
   os << indent << "MaximumCorrectionSweeps: " << this->MaximumCorrectionSweeps << "\n";
+  os << indent << "ThoroughAreaCorrection: " << this->ThoroughAreaCorrection << "\n";
   os << indent << "NumberOfHistogramBins: " << this->NumberOfHistogramBins << "\n";
 }

@@ -153,6 +153,8 @@ public:
     }
   }
 
+  void setOverrelaxation(double factor) { this->Overrelaxation = factor; }
+
   // Polishing: only vertices with a triangle off by more than `settled` move, all of them
   // candidates again.
   void polishFrom(double settled)
@@ -201,7 +203,8 @@ public:
   }
 
 private:
-  static constexpr double Overrelaxation = 1.8; // measured: 1.0 needs twice the sweeps
+  // CompositionOptions::correctionOverrelaxation (measured: 1.0 needs twice the sweeps of 1.8).
+  double Overrelaxation = 1.8;
   double SettledLogRatio = 1e-3;
   bool Polishing = false;
   enum : char
@@ -375,6 +378,7 @@ bool correctAreas(AreaCorrectionOn<Geometry>& correction,
 {
   // The mean is measured every few sweeps only: it costs a logarithm per triangle.
   constexpr int SweepsPerCheck = 4;
+  correction.setOverrelaxation(options.correctionOverrelaxation);
   for (int sweep = 0; sweep < options.maximumCorrectionSweeps; ++sweep)
   {
     const std::int64_t moved = correction.sweep(points);
