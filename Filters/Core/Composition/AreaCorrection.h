@@ -203,8 +203,9 @@ public:
   }
 
 private:
-  // CompositionOptions::correctionOverrelaxation (measured: 1.0 needs twice the sweeps of 1.8).
-  double Overrelaxation = 1.8;
+  // CompositionOptions::correctionOverrelaxation, set by correctAreas (measured: 1.0 needs
+  // twice the sweeps of the default 1.8).
+  double Overrelaxation = CompositionOptions{}.correctionOverrelaxation;
   double SettledLogRatio = 1e-3;
   bool Polishing = false;
   enum : char

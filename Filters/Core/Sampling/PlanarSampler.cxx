@@ -464,10 +464,8 @@ double steerOffsets(const DensityField& field, double power, double equalizedPow
   // samples (and the whole map) in their last digits.
   const double mean =
     std::accumulate(equalized.begin(), equalized.end(), 0.0) / static_cast<double>(n);
-  double variance = 0.0;
   for (size_t i = 0; i < n; ++i)
   {
-    variance += (equalized[i] - mean) * (equalized[i] - mean);
     if (equalized[i] > 0.0)
     {
       const double change =
@@ -475,7 +473,7 @@ double steerOffsets(const DensityField& field, double power, double equalizedPow
       offset[i] += change * area[i] / CellAreaPerOffset;
     }
   }
-  return std::sqrt(variance / static_cast<double>(n)) / mean;
+  return massCoefficientOfVariation(equalized);
 }
 
 // What the relaxation did: ran, gave up at once because the unrelaxed masses already spread by
