@@ -76,7 +76,8 @@ public:
    * Approximate number of Dirac samples of the conformal factor (vtkAdaptiveDensitySampler's
    * NumberOfSamples). 0 (the default): automatic, 5000 or one sample per 50 input points,
    * whichever is more (a surface of 1M points needs ~20000 for the area error of a small one);
-   * the count used is the field data NumberOfSamples.
+   * the count used is the field data NumberOfSamples. More than 4 times both the point count
+   * and 5000 is warned about: the map is computed at the points and gains little from more.
    */
   vtkSetMacro(NumberOfSamples, int);
   vtkGetMacro(NumberOfSamples, int);

@@ -289,6 +289,27 @@ void warnAboutTheMap(Run& run, const char* where)
   }
 }
 
+// Samples far beyond the points buy little: the map is computed at the points, and the area
+// correction removes what a finite count leaves (face_choi_bff_17k: mean |log area ratio|
+// 0.011-0.012 at 5000 and at 20000 samples), while the sampler and the transport grow with the
+// count (2e6 samples on that 17k-point face ran for 6 minutes, silently until this warning).
+// The automatic count never reaches the bound.
+void warnAboutTheSampleCount(std::int64_t samples, std::size_t points, Status& status)
+{
+  const std::int64_t useful =
+    std::max(static_cast<std::int64_t>(points), automaticSampleCount(points));
+  if (samples <= 4 * useful)
+  {
+    return;
+  }
+  std::ostringstream msg;
+  msg << "NumberOfSamples = " << samples << " is more than 4 times the surface's " << points
+      << " points: the map gains little from samples beyond the points, and sampling and "
+         "transport take far longer (0 chooses "
+      << automaticSampleCount(points) << " for this surface).";
+  status.warnings.push_back(msg.str());
+}
+
 // The options with NumberOfSamples 0 (automatic) resolved for this surface.
 AreaPreservingOptions withSampleCount(
   const AreaPreservingOptions& requested, const TriangleSoup& surface)
@@ -322,6 +343,7 @@ void chainStages(const AreaPreservingOptions& options, const TriangleSoup& surfa
   {
     return;
   }
+  warnAboutTheSampleCount(options.sampling.numberOfSamples, surface.points.size(), run.status);
   auto timed = [](double& seconds, const auto& stage)
   {
     const auto start = Clock::now();

@@ -96,6 +96,36 @@ TEST(Pipeline, RefusesWhatWouldNotFitInMemory)
   EXPECT_TRUE(parameterizeSphere(sphere, options).status.ok());
 }
 
+// Far more samples than points is allowed, with a warning that says so and what 0 would choose;
+// the automatic count and counts up to 4 times the points (or 5000) are not warned about. The
+// runs are stopped at their first progress check: the warning comes before any work.
+TEST(Pipeline, WarnsWhenTheSamplesFarOutnumberThePoints)
+{
+  const TriangleSoup disk = testing::readSoup(testing::sharedMesh("hemisphere_2k.obj"));
+  const std::string points = std::to_string(disk.points.size());
+  AreaPreservingOptions options;
+  options.progress = [](const char*, double) { return false; };
+  auto warnings = [&](int samples)
+  {
+    options.sampling.numberOfSamples = samples;
+    const AreaPreservingResult r = parameterizeDisk(disk, options);
+    EXPECT_TRUE(r.status.aborted);
+    return r.status.warnings;
+  };
+  EXPECT_TRUE(warnings(0).empty());
+  EXPECT_TRUE(warnings(20000).empty());
+  const std::vector<std::string> many = warnings(20001);
+  ASSERT_EQ(many.size(), 1u);
+  EXPECT_EQ(many[0],
+    "NumberOfSamples = 20001 is more than 4 times the surface's " + points +
+      " points: the map gains little from samples beyond the points, and sampling and transport "
+      "take far longer (0 chooses 5000 for this surface).");
+  options.sampling.numberOfSamples = 20001;
+  const TriangleSoup sphere =
+    toSoup(otparam::testing::convexHullMesh(otparam::testing::fibonacciSphere(300)));
+  EXPECT_EQ(parameterizeSphere(sphere, options).status.warnings.size(), 1u);
+}
+
 // Whichever progress check says stop (ParaView's AbortExecute), the run ends there: aborted, no
 // error, no map. Every check of both pipelines is tried on small surfaces, so a check that is
 // not honoured (the run going on to a result) fails here.
