@@ -206,6 +206,8 @@ int main(int argc, char** argv)
       options.sampling.numberOfSamples = std::atoll(argv[++i]);
     else if (!std::strcmp(argv[i], "--correction-decrease") && i + 1 < argc)
       options.composition.correctionRelativeDecrease = std::atof(argv[++i]);
+    else if (!std::strcmp(argv[i], "--thorough-correction"))
+      makeCorrectionThorough(options.composition);
     else if (!std::strcmp(argv[i], "--no-correction"))
       options.composition.correctAreas = false;
     else if (!std::strcmp(argv[i], "--subdivide") && i + 1 < argc)
@@ -216,7 +218,7 @@ int main(int argc, char** argv)
     {
       std::fprintf(stderr,
         "unknown option %s\nusage: otparam_param_benchmark [--repeat R] [--samples N] "
-        "[--correction-decrease F] [--no-correction] [--subdivide K] [--progress-gaps] "
+        "[--correction-decrease F] [--thorough-correction] [--no-correction] [--subdivide K] [--progress-gaps] "
         "[mesh ...]\n",
         argv[i]);
       return 2;
