@@ -3,11 +3,12 @@ message prefixed by its name, its own parameters are checked before any work, an
 RequestData fails, all three outputs are empty, the input is untouched, and the filter works
 again once the input is fixed. Abort leaves the outputs empty."""
 
-from bad_disk_inputs import INF, NAN, SURFACE_CASES, good_disk, reversed_triangle
+from bad_disk_inputs import INF, NAN, SURFACE_CASES, collapsed_edge, good_disk, reversed_triangle
 from otparam import vtkAreaPreservingParam
 from otparam_test_utils import (MessageRecorder, cell_lists, check, check_abort, check_failed_run,
                                 field_value, finish, same, snapshot)
 from vtkmodules.vtkCommonCore import vtkCommand
+from vtkmodules.vtkFiltersCore import vtkCleanPolyData
 
 # The conformal map is the first stage: every bad surface is its to reject. A closed surface is
 # bad only for the disk (Domain Automatic maps it onto the sphere: TestAreaPreservingParamSphere).
@@ -82,6 +83,22 @@ check(not errors.messages and not warnings.messages,
 check(out.GetNumberOfPoints() == surface.GetNumberOfPoints()
       and field_value(out, "FlippedTriangles") == 0 and field_value(out, "Converged") == 1,
       "fixed input: converged, every point, no flipped triangle")
+
+# Coincident points: the clean the message names makes the surface mappable (one point fewer,
+# the two collapsed triangles gone).
+clean = vtkCleanPolyData()
+clean.SetInputData(collapsed_edge())
+clean.ConvertPolysToLinesOff()
+param = vtkAreaPreservingParam()
+param.SetNumberOfSamples(200)
+param.SetInputConnection(clean.GetOutputPort())
+errors = MessageRecorder(param)
+param.Update()
+out = param.GetOutput()
+check(not errors.messages and out.GetNumberOfPoints() == good_disk().GetNumberOfPoints() - 1
+      and out.GetNumberOfPolys() == good_disk().GetNumberOfPolys() - 2
+      and field_value(out, "FlippedTriangles") == 0 and field_value(out, "Converged") == 1,
+      f"coincident points after vtkCleanPolyData: mapped ({errors.text()})")
 
 # Abort: the outputs stay empty and a warning says so.
 param = vtkAreaPreservingParam()

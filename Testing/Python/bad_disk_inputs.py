@@ -181,6 +181,10 @@ def zero_area():
     return mesh(grid_points() + [middle], grid_triangles() + [(1, 0, N * N)])
 
 
+def collapsed_edge():
+    return with_point(CENTRE, grid_points()[CENTRE + 1])
+
+
 def reversed_triangle():
     a, b, c = grid_triangles()[13]
     return replace_triangle(13, (a, c, b))
@@ -211,7 +215,11 @@ SURFACE_CASES = [
     ("line cell", add_cells(good_disk(), "Lines", [(0, 1)]), {}, ["triangle", "1 line cells"]),
     ("vertex cells", add_cells(good_disk(), "Verts", [(0,), (3,)]), {},
      ["triangle", "2 vertex cells"]),
-    ("zero-area triangle", zero_area(), {}, ["zero area", "triangle ids 32"]),
+    ("zero-area triangle", zero_area(), {}, ["zero area", "triangle ids 32", "collinear"]),
+    # The centre moved onto its right neighbour: the two triangles on their edge collapse, and
+    # the message names the clean that removes them (TestAreaPreservingParamBadInput runs it).
+    ("coincident points", collapsed_edge(), {},
+     ["zero area", "coincident points", "vtkcleanpolydata", "convertpolystolines off"]),
     ("NaN coordinate", with_point(12, (NAN, 0.0, 0.0)), {}, ["nan", "point ids 12"]),
     ("infinite coordinate", with_point(7, (0.0, INF, 0.0)), {}, ["infinite", "point ids 7"]),
     ("-infinite z", with_point(20, (-1.0, 1.0, -INF)), {}, ["infinite", "point ids 20"]),
