@@ -161,8 +161,8 @@ void WriteFigures(const otparam::SphereParameterizationResult& run, vtkDataObjec
   WriteCommonFigures(run, vtkAreaPreservingParam::SPHERE, figures);
   AddIntScalar(figures, "FilledHoles", 0);
   AddScalar(figures, "FillAreaFraction", 0.0);
-  AddIntScalar(figures, "CorrectionSweeps", 0);
-  AddIntScalar(figures, "TransportStages", 0);
+  AddIntScalar(figures, "CorrectionSweeps", run.composition.correctionSweeps);
+  AddIntScalar(figures, "TransportStages", run.transportStages);
 }
 
 // Longitude and latitude of points on the sphere, scaled to [0, 1] (texture coordinates).

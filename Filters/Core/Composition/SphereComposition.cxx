@@ -117,36 +117,124 @@ std::vector<int> flippedOnSphere(const SurfaceMesh& surface, const std::vector<V
   return flipped;
 }
 
+// The gnomonic chart at a unit vector: great circles become lines, and a chordal triangle's
+// orientation seen from outside is the sign of its planar area there. Points must lie well
+// within the chart's hemisphere (`contains`).
+struct GnomonicChart
+{
+  explicit GnomonicChart(const Vec3& centre)
+    : Centre(centre)
+    , Frame(composition::SphereGeometry::frame(centre))
+  {
+  }
+  bool contains(const Vec3& p) const { return dot(p, this->Centre) > 0.05; }
+  Vec2 toChart(const Vec3& p) const
+  {
+    const double height = dot(p, this->Centre);
+    return { dot(p, this->Frame.e1) / height, dot(p, this->Frame.e2) / height };
+  }
+  Vec3 toSphere(Vec2 q) const
+  {
+    return normalized(this->Centre + q.x * this->Frame.e1 + q.y * this->Frame.e2);
+  }
+
+  Vec3 Centre;
+  composition::SphereGeometry::Frame Frame;
+};
+
 // Moves vertex v to the point of the gnomonic chart at its image that maximizes the smallest
 // signed area of its star (Untangling.h), then back onto the sphere. Returns whether it moved.
 bool untangleVertex(int v, const composition::VertexStars& stars, std::vector<Vec3>& sphere)
 {
-  const Vec3 n = sphere[v];
-  const Vec3 helper = std::abs(n.x) < 0.6 ? Vec3{ 1, 0, 0 } : Vec3{ 0, 1, 0 };
-  const Vec3 e1 = normalized(cross(n, helper)), e2 = cross(n, e1);
-  auto chart = [&](const Vec3& p, Vec2& out)
-  {
-    const double height = dot(p, n);
-    out = { dot(p, e1) / height, dot(p, e2) / height };
-    return height > 0.05; // the star must lie well within the chart's hemisphere
-  };
+  const GnomonicChart chart(sphere[v]);
   std::vector<std::pair<Vec2, Vec2>> rim;
   for (int e = stars.offsets[v]; e < stars.offsets[v + 1]; ++e)
   {
-    Vec2 b, c;
-    if (!chart(sphere[stars.entries[e][1]], b) || !chart(sphere[stars.entries[e][2]], c))
+    const Vec3 b = sphere[stars.entries[e][1]], c = sphere[stars.entries[e][2]];
+    if (!chart.contains(b) || !chart.contains(c))
     {
       return false;
     }
-    rim.emplace_back(b, c);
+    rim.emplace_back(chart.toChart(b), chart.toChart(c));
   }
   const Vec2 best = composition::maximizeSmallestArea(rim, Vec2{ 0.0, 0.0 });
   if (best.x == 0.0 && best.y == 0.0)
   {
     return false;
   }
-  sphere[v] = normalized(n + best.x * e1 + best.y * e2);
+  sphere[v] = chart.toSphere(best);
   return true;
+}
+
+// The patch around the flipped triangles re-embedded (Untangling.h) in the gnomonic chart at
+// its mean image; its rim must lie within that chart. Kept only if fewer triangles are flipped
+// after it. Returns the vertices moved. (Measured: a closed surface with a finger of length
+// 30 radii, whose first staged transport left 471 triangles flipped.)
+std::int64_t reembedOnSphere(const SurfaceMesh& surface, const composition::VertexStars& stars,
+  const std::vector<int>& flipped, int rings, std::vector<Vec3>& sphere)
+{
+  std::vector<int> unknown(sphere.size(), -1);
+  const std::vector<int> patch = composition::patchAround(
+    flipped, rings, surface.triangles, stars, [](int) { return true; }, unknown);
+  Vec3 sum{ 0.0, 0.0, 0.0 };
+  for (int v : patch)
+  {
+    sum = sum + sphere[v];
+  }
+  if (patch.empty() || 2 * patch.size() > sphere.size() || !(norm(sum) > 0.0))
+  {
+    return 0; // no hemisphere holds the patch
+  }
+  const GnomonicChart chart(normalized(sum));
+  bool rimInChart = true;
+  std::vector<Vec2> layout;
+  const bool solved = composition::tutteLayout(
+    stars, patch, unknown,
+    [&](int u)
+    {
+      rimInChart = rimInChart && chart.contains(sphere[u]);
+      return chart.toChart(sphere[u]);
+    },
+    layout);
+  if (!solved || !rimInChart)
+  {
+    return 0;
+  }
+  std::vector<Vec3> before(patch.size());
+  for (size_t r = 0; r < patch.size(); ++r)
+  {
+    before[r] = sphere[patch[r]];
+    sphere[patch[r]] = chart.toSphere(layout[r]);
+  }
+  if (flippedOnSphere(surface, sphere).size() < flipped.size())
+  {
+    return static_cast<std::int64_t>(patch.size());
+  }
+  for (size_t r = 0; r < patch.size(); ++r)
+  {
+    sphere[patch[r]] = before[r];
+  }
+  return 0;
+}
+
+// Step 2: vertex by vertex, then patches re-embedded where that is not enough.
+std::int64_t untangleOnSphere(
+  const SurfaceMesh& surface, const composition::VertexStars& stars, std::vector<Vec3>& sphere)
+{
+  const size_t n = sphere.size();
+  auto untangleLocally = [&]
+  {
+    return composition::untangleInRings(
+      stars, n, [&] { return flippedOnSphere(surface, sphere); },
+      [&](int v) { return untangleVertex(v, stars, sphere); },
+      [&](int t) { return surface.triangles[t]; });
+  };
+  const std::int64_t moved = untangleLocally();
+  return moved +
+    composition::reembedWhereCollapsed([&] { return flippedOnSphere(surface, sphere); },
+      [&](const std::vector<int>& flipped, int rings)
+      { return reembedOnSphere(surface, stars, flipped, rings, sphere); },
+      untangleLocally);
 }
 } // namespace
 
@@ -208,10 +296,7 @@ SphereCompositionResult composeOnSphere(const SurfaceMesh& surface,
   t0 = Clock::now();
   result.sphere = result.interpolated;
   const composition::VertexStars stars(n, surface.triangles);
-  result.untangledVertices = composition::untangleInRings(
-    stars, n, [&] { return flippedOnSphere(surface, result.sphere); },
-    [&](int v) { return untangleVertex(v, stars, result.sphere); },
-    [&](int t) { return surface.triangles[t]; });
+  result.untangledVertices = untangleOnSphere(surface, stars, result.sphere);
   result.secondsUntangling = secondsSince(t0);
   // As on the disk: the untangled map before the correction.
   result.meanAbsLogAreaRatioInterpolated = sphereMeanAbsLogAreaRatio(surface, result.sphere);

@@ -128,6 +128,118 @@ std::int64_t untangleInRings(const VertexStars& stars, size_t n, FindFlipped fin
   return std::count(moved.begin(), moved.end(), 1);
 }
 
+// The re-embedding of a collapsed patch, for any domain. Vertex by vertex fails where a whole
+// patch collapsed into a thin band (the images of a crowded patch: bunny_holes_35k once in 16
+// sample sets, 49 triangles left flipped; the staged transport of a long finger): the patch,
+// the vertices within `rings` rings of the flipped triangles that `movable` allows, is laid out
+// again as a Tutte embedding (each vertex the average of its neighbours) with every other
+// vertex held: a convex combination map, which folds nothing when the held rim is convex (a
+// round patch of an otherwise untangled map nearly is). `unknown[v]` becomes v's index in the
+// patch, -1 outside.
+template <class Movable>
+std::vector<int> patchAround(const std::vector<int>& flipped, int rings,
+  const std::vector<Triangle>& triangles, const VertexStars& stars, const Movable& movable,
+  std::vector<int>& unknown)
+{
+  std::vector<int> patch;
+  auto add = [&](int v)
+  {
+    if (unknown[v] < 0 && movable(v))
+    {
+      unknown[v] = static_cast<int>(patch.size());
+      patch.push_back(v);
+    }
+  };
+  for (int t : flipped)
+  {
+    for (int v : triangles[t])
+    {
+      add(v);
+    }
+  }
+  for (int ring = 0; ring < rings; ++ring)
+  {
+    const size_t count = patch.size();
+    for (size_t r = 0; r < count; ++r)
+    {
+      for (int e = stars.offsets[patch[r]]; e < stars.offsets[patch[r] + 1]; ++e)
+      {
+        add(stars.entries[e][1]);
+        add(stars.entries[e][2]);
+      }
+    }
+  }
+  return patch;
+}
+
+// The Tutte positions of `patch` (uniform weights, one per rim edge end), the vertices outside
+// it held at `held(u)`: a chart's coordinates. False when the solve fails.
+template <class Held>
+bool tutteLayout(const VertexStars& stars, const std::vector<int>& patch,
+  const std::vector<int>& unknown, const Held& held, std::vector<Vec2>& layout)
+{
+  std::vector<Eigen::Triplet<double>> entries;
+  Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(patch.size()), 2);
+  for (size_t r = 0; r < patch.size(); ++r)
+  {
+    const int row = static_cast<int>(r);
+    for (int e = stars.offsets[patch[r]]; e < stars.offsets[patch[r] + 1]; ++e)
+    {
+      for (int k = 1; k < 3; ++k)
+      {
+        const int u = stars.entries[e][k];
+        entries.emplace_back(row, row, 1.0);
+        if (unknown[u] >= 0)
+        {
+          entries.emplace_back(row, unknown[u], -1.0);
+        }
+        else
+        {
+          const Vec2 p = held(u);
+          rhs(row, 0) += p.x;
+          rhs(row, 1) += p.y;
+        }
+      }
+    }
+  }
+  Eigen::SparseMatrix<double> laplacian(rhs.rows(), rhs.rows());
+  laplacian.setFromTriplets(entries.begin(), entries.end());
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(laplacian);
+  const Eigen::MatrixXd position = solver.solve(rhs);
+  if (solver.info() != Eigen::Success || !position.allFinite())
+  {
+    return false;
+  }
+  layout.resize(patch.size());
+  for (size_t r = 0; r < patch.size(); ++r)
+  {
+    const auto row = static_cast<Eigen::Index>(r);
+    layout[r] = { position(row, 0), position(row, 1) };
+  }
+  return true;
+}
+
+// Re-embeds growing patches around the flipped triangles (2 to 32 rings), each kept only if it
+// leaves fewer triangles flipped, then untangles locally again. `reembed(flipped, rings)` lays
+// one patch out and returns the vertices it moved.
+template <class FindFlipped, class Reembed, class UntangleLocally>
+std::int64_t reembedWhereCollapsed(
+  const FindFlipped& findFlipped, const Reembed& reembed, const UntangleLocally& untangleLocally)
+{
+  std::int64_t moved = 0;
+  for (int rings = 2; rings <= 32; rings *= 2)
+  {
+    const std::vector<int> flipped = findFlipped();
+    if (flipped.empty())
+    {
+      break;
+    }
+    moved += reembed(flipped, rings);
+    moved += untangleLocally();
+  }
+  return moved;
+}
+
 // Step 2: optimization-based untangling (Freitag and Plassmann): each vertex of a flipped
 // triangle moves to the point of its star that maximizes the smallest signed area of its
 // triangles, which lies in the kernel of the star's rim whenever that kernel is not empty.
@@ -153,21 +265,12 @@ public:
 
   std::int64_t run(std::vector<Vec2>& uv) const
   {
-    std::int64_t moved = this->untangleLocally(uv);
-    // Vertex by vertex fails where a whole patch collapsed into a thin band (the images of a
-    // crowded patch: bunny_holes_35k once in 16 sample sets, 49 triangles left flipped): the
-    // patch, grown by a few rings, is then laid out again as a Tutte embedding inside its rim.
-    for (int rings = 2; rings <= 32; rings *= 2)
-    {
-      const std::vector<int> flipped = flippedTriangles(this->Surface.triangles, uv);
-      if (flipped.empty())
-      {
-        break;
-      }
-      moved += this->reembed(flipped, rings, uv);
-      moved += this->untangleLocally(uv);
-    }
-    return moved;
+    const std::int64_t moved = this->untangleLocally(uv);
+    return moved +
+      reembedWhereCollapsed([&] { return flippedTriangles(this->Surface.triangles, uv); },
+        [&](const std::vector<int>& flipped, int rings)
+        { return this->reembed(flipped, rings, uv); },
+        [&] { return this->untangleLocally(uv); });
   }
 
 private:
@@ -184,74 +287,18 @@ private:
       [&](int t) { return this->Surface.triangles[t]; });
   }
 
-  // The interior vertices within `rings` rings of the flipped triangles move to the Tutte
-  // embedding (each the average of its neighbours) with every other vertex held: a convex
-  // combination map, which folds nothing when the held rim is convex (a round patch of an
-  // otherwise untangled map nearly is). Kept only if fewer triangles are flipped after it.
-  // Returns the number of vertices moved.
+  // The patch around the flipped triangles (the circle's vertices stay) re-embedded in the
+  // plane, kept only if fewer triangles are flipped after it. Returns the vertices moved.
   std::int64_t reembed(const std::vector<int>& flipped, int rings, std::vector<Vec2>& uv) const
   {
-    const size_t n = uv.size();
-    std::vector<int> unknown(n, -1), patch;
-    auto add = [&](int v)
-    {
-      if (unknown[v] < 0 && this->Previous[v] < 0) // the circle's vertices stay
-      {
-        unknown[v] = static_cast<int>(patch.size());
-        patch.push_back(v);
-      }
-    };
-    for (int t : flipped)
-    {
-      for (int v : this->Surface.triangles[t])
-      {
-        add(v);
-      }
-    }
-    for (int ring = 0; ring < rings; ++ring)
-    {
-      const size_t count = patch.size();
-      for (size_t r = 0; r < count; ++r)
-      {
-        for (int e = this->Stars.offsets[patch[r]]; e < this->Stars.offsets[patch[r] + 1]; ++e)
-        {
-          add(this->Stars.entries[e][1]);
-          add(this->Stars.entries[e][2]);
-        }
-      }
-    }
-    if (patch.empty())
-    {
-      return 0;
-    }
-    std::vector<Eigen::Triplet<double>> entries;
-    Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(patch.size()), 2);
-    for (size_t r = 0; r < patch.size(); ++r)
-    {
-      const int row = static_cast<int>(r);
-      for (int e = this->Stars.offsets[patch[r]]; e < this->Stars.offsets[patch[r] + 1]; ++e)
-      {
-        for (int k = 1; k < 3; ++k) // each rim edge: its two ends, weight 1 each
-        {
-          const int u = this->Stars.entries[e][k];
-          entries.emplace_back(row, row, 1.0);
-          if (unknown[u] >= 0)
-          {
-            entries.emplace_back(row, unknown[u], -1.0);
-          }
-          else
-          {
-            rhs(row, 0) += uv[u].x;
-            rhs(row, 1) += uv[u].y;
-          }
-        }
-      }
-    }
-    Eigen::SparseMatrix<double> laplacian(rhs.rows(), rhs.rows());
-    laplacian.setFromTriplets(entries.begin(), entries.end());
-    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(laplacian);
-    const Eigen::MatrixXd position = solver.solve(rhs);
-    if (solver.info() != Eigen::Success || !position.allFinite())
+    std::vector<int> unknown(uv.size(), -1);
+    const std::vector<int> patch = patchAround(
+      flipped, rings, this->Surface.triangles, this->Stars,
+      [&](int v) { return this->Previous[v] < 0; }, unknown);
+    std::vector<Vec2> layout;
+    if (patch.empty() ||
+      !tutteLayout(
+        this->Stars, patch, unknown, [&](int u) { return uv[u]; }, layout))
     {
       return 0;
     }
@@ -259,8 +306,7 @@ private:
     for (size_t r = 0; r < patch.size(); ++r)
     {
       before[r] = uv[patch[r]];
-      uv[patch[r]] = { position(static_cast<Eigen::Index>(r), 0),
-        position(static_cast<Eigen::Index>(r), 1) };
+      uv[patch[r]] = layout[r];
     }
     if (flippedTriangles(this->Surface.triangles, uv).size() < flipped.size())
     {

@@ -57,6 +57,21 @@ bool passOn(const Status& stage, StageRange range, Status& run)
   return run.ok();
 }
 
+// The samples of positive mass: the Diracs.
+template <class Point>
+void keepSamplesWithMass(const std::vector<Point>& samples, const std::vector<double>& mass,
+  std::vector<Point>& diracs, std::vector<double>& masses)
+{
+  for (std::size_t i = 0; i < samples.size(); ++i)
+  {
+    if (mass[i] > 0.0)
+    {
+      diracs.push_back(samples[i]);
+      masses.push_back(mass[i]);
+    }
+  }
+}
+
 // The sampling stage of either domain on the conformal image's exact per-triangle area ratio
 // (masses are then exact surface areas); `runStage(options)` runs the domain's sampler. The
 // Diracs are the samples of positive mass.
@@ -82,14 +97,7 @@ void sample(const AreaPreservingOptions& options, Run& run, const std::vector<do
   // without them, and the solver rejects zero masses. (A conformal factor is positive, so this
   // is a safety net: it caught cells ~1e-7 wide at a coarse hand's finger tips, density 1e10,
   // whose rounding-noise edges once made the integral 0.)
-  for (std::size_t i = 0; i < samples.samples.size(); ++i)
-  {
-    if (samples.mass[i] > 0.0)
-    {
-      run.diracs.push_back(samples.samples[i]);
-      run.masses.push_back(samples.mass[i]);
-    }
-  }
+  keepSamplesWithMass(samples.samples, samples.mass, run.diracs, run.masses);
   run.droppedSamples = static_cast<int>(samples.samples.size() - run.diracs.size());
 }
 
@@ -133,12 +141,13 @@ constexpr double CrowdedDensityRange = 1e12;
 
 // Crowding: along a long protrusion (a finger, a limb, a tail) the conformal area density grows
 // like exp(2 L / r); the transport converges while the density spans up to ~3e12 and stops at
-// its start beyond (Testing/Python/TestCrowding.py). Above CrowdedDensityRange the transport
-// runs in stages: each samples the current map's density clamped to StageDensityRange times
-// its smallest value, transports, and composes without the area correction (the targets are
-// those of the clamped density); the clamped part then gets up to StageDensityRange times its
-// share of the disk, so each stage divides the range by about that, and the last transport,
-// the usual one, starts from a map whose density it resolves.
+// its start beyond (Testing/Python/TestCrowding.py, TestCrowdingSphere.py). Above
+// CrowdedDensityRange the transport runs in stages, on either domain: each samples the current
+// map's density clamped to StageDensityRange times its smallest value, transports, and composes
+// without the area correction (the targets are those of the clamped density); the clamped part
+// then gets up to StageDensityRange times its share of the domain, so each stage divides the
+// range by about that, and the last transport, the usual one, starts from a map whose density
+// it resolves.
 constexpr double StageDensityRange = 1e10;
 constexpr int MaximumTransportStages = 30; // 1e300 / 1e10^30: every range double holds
 
@@ -148,81 +157,164 @@ double rangeOf(const std::vector<double>& density)
   return range.first == density.end() ? 1.0 : *range.second / *range.first;
 }
 
-// One stage: the map startUv moved by the transport of its clamped density. "" or the error.
-std::string transportStage(const AreaPreservingOptions& options, AreaPreservingResult& run,
-  const std::function<bool(double)>& keepGoing)
+std::vector<double> clampedForStage(const std::vector<double>& density)
 {
-  const SurfaceMesh& mesh = run.conformal.surface.mesh;
-  const double lowest = *std::min_element(run.startDensity.begin(), run.startDensity.end());
-  std::vector<double> clamped = run.startDensity;
+  const double lowest = *std::min_element(density.begin(), density.end());
+  std::vector<double> clamped = density;
   for (double& g : clamped)
   {
     g = std::min(g, lowest * StageDensityRange);
   }
+  return clamped;
+}
+
+// "" when a stage's transport converged, else what its error says.
+template <class Transport>
+std::string transportFailure(const Transport& transport)
+{
+  if (transport.status.error.empty() && transport.result.converged)
+  {
+    return {};
+  }
+  return "transport: " +
+    (transport.status.error.empty()
+        ? "not converged (relative error " + std::to_string(transport.result.relativeError) + ")"
+        : transport.status.error);
+}
+
+// "" when a stage's composition left every triangle positive, else why not.
+template <class Composition>
+std::string compositionFailure(const Composition& composed)
+{
+  if (composed.status.ok() && composed.flippedTriangles == 0)
+  {
+    return {};
+  }
+  return "composition: " +
+    (composed.status.error.empty()
+        ? std::to_string(composed.flippedTriangles) + " triangle(s) stay flipped"
+        : composed.status.error);
+}
+
+// The Diracs' spherical Delaunay triangulation for the composition: the sampler's when every
+// sample became a Dirac, else the dual of their Voronoi diagram.
+std::vector<Triangle> diracTriangulation(
+  const SphereSamplingStage& sampling, const SphereTransportStage& transport, std::size_t diracs)
+{
+  if (diracs == sampling.result.samples.size())
+  {
+    return sampling.result.triangles;
+  }
+  return computeSphericalPowerDiagramGeometry(transport.diracs, std::vector<double>(diracs, 0.0))
+    .triangles;
+}
+
+// What a staged transport does on each domain: sample the map run.startUv / run.startSphere,
+// transport from the uniform domain, compose, and adopt the composed map with its density.
+struct DiskStaging
+{
+  using Point = Vec2;
+  static SamplingStage sample(const AreaPreservingResult& run, const std::vector<double>& density,
+    const SamplerOptions& options)
+  {
+    return runSamplingStage(
+      run.startUv, run.conformal.surface.mesh.triangles, {}, density, options);
+  }
+  static TransportStage transport(const std::vector<Vec2>& diracs,
+    const std::vector<double>& masses, const OTOptions& options, double maximumArcAngle)
+  {
+    const std::unique_ptr<SourceMeasure> disk = makeUnitDiskSource();
+    return runTransportStage(*disk, diracs, masses, options, maximumArcAngle);
+  }
+  static CompositionResult compose(const AreaPreservingResult& run, const SamplingStage&,
+    const TransportStage& transport, const std::vector<Vec2>& diracs,
+    const CompositionOptions& options)
+  {
+    return composeWithInverseTransport(run.conformal.surface.mesh, run.startUv,
+      run.conformal.boundaryLoop, diracs, inverseTransportOfDiracs(diracs, transport), options);
+  }
+  static void adopt(AreaPreservingResult& run, const CompositionResult& composed)
+  {
+    run.startUv = composed.uv;
+    std::vector<double> perPoint;
+    computeAreaDensity(run.conformal.surface.mesh, run.startUv, run.startDensity, perPoint);
+  }
+};
+
+struct SphereStaging
+{
+  using Point = Vec3;
+  static SphereSamplingStage sample(const SphereParameterizationResult& run,
+    const std::vector<double>& density, const SamplerOptions& options)
+  {
+    return runSphereSamplingStage(
+      run.startSphere, run.conformal.surface.mesh.triangles, density, options);
+  }
+  static SphereTransportStage transport(const std::vector<Vec3>& diracs,
+    const std::vector<double>& masses, const OTOptions& options, double maximumArcAngle)
+  {
+    return runSphereTransportStage(diracs, masses, options, maximumArcAngle);
+  }
+  static SphereCompositionResult compose(const SphereParameterizationResult& run,
+    const SphereSamplingStage& sampling, const SphereTransportStage& transport,
+    const std::vector<Vec3>& diracs, const CompositionOptions& options)
+  {
+    return composeOnSphere(run.conformal.surface.mesh, run.startSphere, transport.diracs,
+      diracTriangulation(sampling, transport, diracs.size()), transport.result.centroids, options);
+  }
+  static void adopt(SphereParameterizationResult& run, const SphereCompositionResult& composed)
+  {
+    run.startSphere = composed.sphere;
+    std::vector<double> perPoint;
+    computeSphereAreaDensity(
+      run.conformal.surface.mesh, run.startSphere, run.startDensity, perPoint);
+  }
+};
+
+// One stage: the start map moved by the transport of its clamped density. "" or the error.
+template <class Staging, class Run>
+std::string transportStage(
+  const AreaPreservingOptions& options, Run& run, const std::function<bool(double)>& keepGoing)
+{
   SamplerOptions samplerOptions = options.sampling;
   samplerOptions.progress = keepGoing;
-  const SamplingStage sampling =
-    runSamplingStage(run.startUv, mesh.triangles, {}, clamped, samplerOptions);
+  const auto sampling = Staging::sample(run, clampedForStage(run.startDensity), samplerOptions);
   if (!sampling.status.ok())
   {
     run.status.aborted = sampling.status.aborted;
     return "sampling: " + sampling.status.error;
   }
-  std::vector<Vec2> diracs;
+  std::vector<typename Staging::Point> diracs;
   std::vector<double> masses;
-  for (std::size_t i = 0; i < sampling.result.samples.size(); ++i)
-  {
-    if (sampling.result.mass[i] > 0.0)
-    {
-      diracs.push_back(sampling.result.samples[i]);
-      masses.push_back(sampling.result.mass[i]);
-    }
-  }
+  keepSamplesWithMass(sampling.result.samples, sampling.result.mass, diracs, masses);
   OTOptions transportOptions = options.transport;
   transportOptions.progress = [&keepGoing](int, double) { return keepGoing(0.0); };
-  const std::unique_ptr<SourceMeasure> disk = makeUnitDiskSource();
-  const TransportStage transport =
-    runTransportStage(*disk, diracs, masses, transportOptions, options.maximumArcAngle);
-  if (transport.status.aborted)
+  const auto transport =
+    Staging::transport(diracs, masses, transportOptions, options.maximumArcAngle);
+  run.status.aborted = transport.status.aborted;
+  if (!transportFailure(transport).empty())
   {
-    run.status.aborted = true;
-    return "transport aborted";
-  }
-  if (!transport.status.error.empty() || !transport.result.converged)
-  {
-    std::ostringstream msg;
-    msg << "transport: "
-        << (transport.status.error.empty() ? "not converged (relative error " +
-                std::to_string(transport.result.relativeError) + ")"
-                                           : transport.status.error);
-    return msg.str();
+    return transportFailure(transport);
   }
   CompositionOptions compositionOptions = options.composition;
   compositionOptions.correctAreas = false;
   compositionOptions.progress = keepGoing;
-  const CompositionResult composed = composeWithInverseTransport(mesh, run.startUv,
-    run.conformal.boundaryLoop, diracs, inverseTransportOfDiracs(diracs, transport),
-    compositionOptions);
-  if (!composed.status.ok() || composed.flippedTriangles > 0)
+  const auto composed = Staging::compose(run, sampling, transport, diracs, compositionOptions);
+  run.status.aborted = composed.status.aborted;
+  if (!compositionFailure(composed).empty())
   {
-    run.status.aborted = composed.status.aborted;
-    return "composition: " +
-      (composed.status.error.empty() ? std::to_string(composed.flippedTriangles) +
-            " triangle(s) stay flipped"
-                                     : composed.status.error);
+    return compositionFailure(composed);
   }
-  run.startUv = composed.uv;
-  std::vector<double> perPoint;
-  computeAreaDensity(mesh, run.startUv, run.startDensity, perPoint);
+  Staging::adopt(run, composed);
   return {};
 }
 
-// The map the last transport starts from (run.startUv, run.startDensity): the conformal map,
-// moved by staged transports while its density spans more than CrowdedDensityRange. Sets
-// run.sampling.status when a stage fails.
-void transportInStages(const AreaPreservingOptions& options, AreaPreservingResult& run)
+// The map the last transport starts from (run.startUv or run.startSphere, run.startDensity):
+// the conformal map, moved by staged transports while its density spans more than
+// CrowdedDensityRange. Sets run.sampling.status when a stage fails.
+template <class Staging, class Run>
+void transportInStages(const AreaPreservingOptions& options, Run& run)
 {
-  run.startUv = run.conformal.map.uv;
   run.startDensity = run.conformal.areaDensityPerTriangle;
   const auto keepGoing = [&options](double)
   { return !options.progress || options.progress("sampling", SamplingRange.start); };
@@ -234,7 +326,7 @@ void transportInStages(const AreaPreservingOptions& options, AreaPreservingResul
       break; // the last transport says what it can
     }
     const double range = rangeOf(run.startDensity);
-    const std::string error = transportStage(options, run, keepGoing);
+    const std::string error = transportStage<Staging>(options, run, keepGoing);
     if (run.status.aborted)
     {
       run.sampling.status.aborted = true;
@@ -243,10 +335,11 @@ void transportInStages(const AreaPreservingOptions& options, AreaPreservingResul
     if (!error.empty())
     {
       std::ostringstream msg;
+      const bool endsSentence = error.back() == '.';
       msg << "The conformal map crowds part of the surface (its area density spans " << range
           << ": a long protrusion such as a finger, a limb or a tail), and stage "
-          << run.transportStages + 1
-          << " of the staged transport that widens it failed in its " << error
+          << run.transportStages + 1 << " of the staged transport that widens it failed in its "
+          << error.substr(0, error.size() - (endsSentence ? 1 : 0))
           << ". Cut the surface open closer to the protrusion, or map its parts separately.";
       run.sampling.status.error = msg.str();
       return;
@@ -479,7 +572,8 @@ AreaPreservingResult parameterizeDisk(
     },
     [&]
     {
-      transportInStages(options, run);
+      run.startUv = run.conformal.map.uv;
+      transportInStages<DiskStaging>(options, run);
       if (!run.sampling.status.ok())
       {
         return;
@@ -520,19 +614,13 @@ void composeOnTheSphere(const AreaPreservingOptions& options, SphereParameteriza
 {
   const SphereConformalStage& conformal = run.conformal;
   run.sampleImages = run.transport.result.centroids;
-  // The interpolation needs the Diracs' own spherical Delaunay triangulation: the sampler's
-  // (all its samples kept) or, after samples were dropped, the Voronoi diagram's dual.
-  const std::vector<Triangle> triangles = run.droppedSamples == 0
-    ? run.sampling.result.triangles
-    : computeSphericalPowerDiagramGeometry(
-        run.transport.diracs, std::vector<double>(run.diracs.size(), 0.0))
-        .triangles;
   try
   {
     CompositionOptions compositionOptions = options.composition;
     compositionOptions.progress = stageProgress(options, CompositionRange);
-    run.composition = composeOnSphere(conformal.surface.mesh, conformal.map.sphere,
-      run.transport.diracs, triangles, run.sampleImages, compositionOptions);
+    run.composition = composeOnSphere(conformal.surface.mesh, run.startSphere, run.transport.diracs,
+      diracTriangulation(run.sampling, run.transport, run.diracs.size()), run.sampleImages,
+      compositionOptions);
     if (run.composition.status.aborted)
     {
       run.status.aborted = true;
@@ -568,12 +656,17 @@ SphereParameterizationResult parameterizeSphere(
     },
     [&]
     {
-      sample(options, run, run.conformal.areaDensityPerTriangle,
+      run.startSphere = run.conformal.map.sphere;
+      transportInStages<SphereStaging>(options, run);
+      if (!run.sampling.status.ok())
+      {
+        return;
+      }
+      sample(options, run, run.startDensity,
         [&](const SamplerOptions& samplerOptions)
         {
-          return runSphereSamplingStage(run.conformal.map.sphere,
-            run.conformal.surface.mesh.triangles, run.conformal.areaDensityPerTriangle,
-            samplerOptions);
+          return runSphereSamplingStage(run.startSphere, run.conformal.surface.mesh.triangles,
+            run.startDensity, samplerOptions);
         });
     },
     [&](const OTOptions& transportOptions)

@@ -50,8 +50,7 @@ struct AreaPreservingResult
   std::vector<double> masses;
   int droppedSamples = 0;
   // The map the (last) transport starts from, with its area density per triangle: the conformal
-  // map, or for a crowded surface the map after `transportStages` staged transports
-  // (parameterizeDisk).
+  // map, or for a crowded surface the map after `transportStages` staged transports.
   std::vector<Vec2> startUv;
   std::vector<double> startDensity;
   int transportStages = 0;
@@ -101,6 +100,11 @@ struct SphereParameterizationResult
   std::vector<Vec3> diracs; // the samples of positive mass
   std::vector<double> masses;
   int droppedSamples = 0;
+  // As on the disk: the map the (last) transport starts from, after `transportStages` staged
+  // transports of a crowded surface.
+  std::vector<Vec3> startSphere;
+  std::vector<double> startDensity;
+  int transportStages = 0;
   SphereTransportStage transport;
   std::vector<Vec3> sampleImages; // T^-1 of each Dirac: its cell's centroid on the sphere
   SphereCompositionResult composition;
