@@ -159,8 +159,8 @@ void WriteFigures(const otparam::AreaPreservingResult& run, vtkDataObject* figur
 void WriteFigures(const otparam::SphereParameterizationResult& run, vtkDataObject* figures)
 {
   WriteCommonFigures(run, vtkAreaPreservingParam::SPHERE, figures);
-  AddIntScalar(figures, "FilledHoles", 0);
-  AddScalar(figures, "FillAreaFraction", 0.0);
+  AddIntScalar(figures, "FilledHoles", run.conformal.filledHoles);
+  AddScalar(figures, "FillAreaFraction", run.conformal.fillAreaFraction);
   AddIntScalar(figures, "CorrectionSweeps", run.composition.correctionSweeps);
   AddIntScalar(figures, "TransportStages", run.transportStages);
 }
@@ -314,7 +314,8 @@ int vtkAreaPreservingParam::Execute(
   }
 
   const bool sphere = this->Domain == SPHERE ||
-    (this->Domain == AUTOMATIC && otparam::chooseDomain(soup) == otparam::Domain::Sphere);
+    (this->Domain == AUTOMATIC &&
+      otparam::chooseDomain(soup, this->FillHoles) == otparam::Domain::Sphere);
   if (sphere)
   {
     const otparam::SphereParameterizationResult run = otparam::parameterizeSphere(soup, options);

@@ -15,7 +15,7 @@
  * figures, before and after the correction, are in the field data.
  *
  * Input: a triangle surface of genus 0: disk-like (one boundary loop, or several with
- * FillHoles) for the disk, closed for the sphere (Domain).
+ * FillHoles) for the disk, closed (or with small holes and FillHoles) for the sphere (Domain).
  *
  * Domain Sphere (the default Automatic picks it for a closed surface): the same chain on the
  * unit sphere (../shared/docs/sphere.md): vtkConformalSphereMap (Moebius-balanced) ->
@@ -131,7 +131,8 @@ public:
    * longest loop (by surface length) becomes the disk's boundary and the others are closed
    * for the computation with CGAL's hole filling (triangulate, refine, fair); the fill is
    * dropped from the outputs, which have exactly the input's referenced points and
-   * triangles. Off: such a surface is refused.
+   * triangles. On the sphere (see Domain) every loop is closed the same way. Off: such a
+   * surface is refused.
    */
   vtkSetMacro(FillHoles, bool);
   vtkGetMacro(FillHoles, bool);
@@ -140,8 +141,11 @@ public:
 
   ///@{
   /**
-   * Where the surface is mapped: AUTOMATIC (default: the sphere for a closed surface, the disk
-   * otherwise), DISK, or SPHERE.
+   * Where the surface is mapped: AUTOMATIC (default: the sphere for a closed surface, and with
+   * FillHoles for a closed scan whose holes are all small, the largest covering at most 1% of
+   * the surface as a round disk of its length; the disk otherwise), DISK (a warning when the
+   * boundary loop is that small: the disk map squeezes the whole surface through it), or SPHERE
+   * (a closed surface, or with FillHoles one whose holes cover at most 10%).
    */
   enum DomainType
   {

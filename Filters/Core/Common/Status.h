@@ -4,6 +4,7 @@
 #define OTPARAM_COMMON_STATUS_H
 
 #include <cmath>
+#include <iomanip>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -46,6 +47,23 @@ inline std::string checkAtLeast(const char* name, long long value, long long min
   std::ostringstream msg;
   msg << name << " must be at least " << minimum << "; got " << value << ".";
   return msg.str();
+}
+
+// A fraction as a percentage for messages: "0.053%", "1.8%", "100%" (two significant digits,
+// never in exponent form).
+inline std::string percentOf(double fraction)
+{
+  std::ostringstream text;
+  const double percent = 100.0 * fraction;
+  if (percent >= 10.0)
+  {
+    text << std::fixed << std::setprecision(0) << percent << "%";
+  }
+  else
+  {
+    text << std::setprecision(2) << percent << "%";
+  }
+  return text.str();
 }
 
 } // namespace otparam

@@ -7,6 +7,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <numeric>
 #include <unordered_map>
 
 namespace otparam
@@ -238,16 +239,28 @@ std::int64_t untangleOnSphere(
 }
 } // namespace
 
-double sphereMeanAbsLogAreaRatio(const SurfaceMesh& surface, const std::vector<Vec3>& sphere)
+double sphereMeanAbsLogAreaRatio(
+  const SurfaceMesh& surface, const std::vector<Vec3>& sphere, std::size_t measured)
 {
   const std::vector<double> fraction = composition::surfaceAreaFractions(surface);
+  const std::size_t count = measured == 0 ? fraction.size() : std::min(measured, fraction.size());
+  // With a hole fill (measured > 0) the surface shares are renormalized over the measured
+  // triangles, while the sphere's stay of 4 pi, as param_metrics.py --sphere scores the output
+  // (the fill's share of the sphere then shows as a uniform error of |log(1 - share)|).
+  double surfaceShare = 1.0;
+  if (count < fraction.size())
+  {
+    surfaceShare =
+      std::accumulate(fraction.begin(), fraction.begin() + static_cast<long>(count), 0.0);
+  }
+  const double sphereShare = 4.0 * M_PI;
   double mean = 0.0;
-  for (size_t t = 0; t < fraction.size(); ++t)
+  for (size_t t = 0; t < count; ++t)
   {
     const Triangle& tri = surface.triangles[t];
     const double area = sphericalTriangleArea(sphere[tri[0]], sphere[tri[1]], sphere[tri[2]]);
-    const double ratio = std::max(area, 1e-300) / (4.0 * M_PI) / fraction[t];
-    mean += fraction[t] * std::abs(std::log(ratio));
+    const double ratio = std::max(area, 1e-300) / sphereShare / (fraction[t] / surfaceShare);
+    mean += fraction[t] / surfaceShare * std::abs(std::log(ratio));
   }
   return mean;
 }
@@ -299,7 +312,8 @@ SphereCompositionResult composeOnSphere(const SurfaceMesh& surface,
   result.untangledVertices = untangleOnSphere(surface, stars, result.sphere);
   result.secondsUntangling = secondsSince(t0);
   // As on the disk: the untangled map before the correction.
-  result.meanAbsLogAreaRatioInterpolated = sphereMeanAbsLogAreaRatio(surface, result.sphere);
+  result.meanAbsLogAreaRatioInterpolated =
+    sphereMeanAbsLogAreaRatio(surface, result.sphere, options.measuredTriangles);
   result.meanAbsLogAreaRatio = result.meanAbsLogAreaRatioInterpolated;
   if (!report(0.3))
   {
@@ -323,6 +337,11 @@ SphereCompositionResult composeOnSphere(const SurfaceMesh& surface,
       result.sphere.clear(); // an aborted run has no map
       result.status.aborted = true;
       return result;
+    }
+    if (options.measuredTriangles > 0) // else the correction's own last mean is the figure
+    {
+      result.meanAbsLogAreaRatio =
+        sphereMeanAbsLogAreaRatio(surface, result.sphere, options.measuredTriangles);
     }
   }
   result.secondsCorrection = secondsSince(t0);

@@ -52,8 +52,10 @@ SphereCompositionResult composeOnSphere(const SurfaceMesh& surface,
   const CompositionOptions& options = {});
 
 // Area-weighted mean |log(spherical area fraction / surface area fraction)|, as
-// param_metrics.py --sphere scores it.
-double sphereMeanAbsLogAreaRatio(const SurfaceMesh& surface, const std::vector<Vec3>& sphere);
+// param_metrics.py --sphere scores it; over the first `measured` triangles (0 = all), their
+// surface fractions renormalized over them.
+double sphereMeanAbsLogAreaRatio(
+  const SurfaceMesh& surface, const std::vector<Vec3>& sphere, std::size_t measured = 0);
 
 } // namespace otparam
 

@@ -64,6 +64,21 @@ Mesh::Halfedge_index borderHalfedge(const Mesh& mesh, const std::vector<int>& lo
 }
 } // namespace
 
+double largestHoleFraction(const SurfaceMesh& mesh, const std::vector<std::vector<int>>& loops)
+{
+  if (loops.empty())
+  {
+    return 0.0;
+  }
+  double surfaceArea = 0.0;
+  for (const Triangle& t : mesh.triangles)
+  {
+    surfaceArea += triangleArea(mesh, t);
+  }
+  const double length = loopLength(mesh, loops[longestLoop(mesh, loops)]);
+  return length * length / (4.0 * 3.14159265358979323846) / surfaceArea;
+}
+
 std::size_t longestLoop(const SurfaceMesh& mesh, const std::vector<std::vector<int>>& loops)
 {
   std::size_t longest = 0;
@@ -83,8 +98,18 @@ std::size_t longestLoop(const SurfaceMesh& mesh, const std::vector<std::vector<i
 std::string fillHolesButLongest(
   const SurfaceMesh& mesh, const std::vector<std::vector<int>>& loops, FilledSurface& filled)
 {
+  const std::string error = fillHoles(mesh, loops, longestLoop(mesh, loops), filled);
+  if (error.empty())
+  {
+    filled.boundaryLoop = loops[longestLoop(mesh, loops)];
+  }
+  return error;
+}
+
+std::string fillHoles(const SurfaceMesh& mesh, const std::vector<std::vector<int>>& loops,
+  std::size_t kept, FilledSurface& filled)
+{
   filled = FilledSurface();
-  const std::size_t kept = longestLoop(mesh, loops);
   Mesh cgalMesh = toSurfaceMesh(mesh);
   for (std::size_t k = 0; k < loops.size(); ++k)
   {
@@ -140,7 +165,6 @@ std::string fillHolesButLongest(
     filled.mesh.triangles.push_back(t);
     fillArea += triangleArea(filled.mesh, t);
   }
-  filled.boundaryLoop = loops[kept];
   filled.fillAreaFraction = fillArea / (inputArea + fillArea);
   return {};
 }

@@ -86,8 +86,10 @@ enum class Domain
   Sphere = 2
 };
 
-// The domain Automatic stands for: Sphere for a closed surface (no boundary edge), else Disk.
-Domain chooseDomain(const TriangleSoup& surface);
+// The domain Automatic stands for: Sphere for a closed surface (no boundary edge), or with
+// fillHoles for a connected genus-0 surface whose holes are all small (the largest would cover
+// at most 1% of the surface: a closed scan with gaps); else Disk.
+Domain chooseDomain(const TriangleSoup& surface, bool fillHoles = true);
 
 // The sphere's chain (sphere.md): conformal sphere map -> adaptive sampling of its area density
 // on the sphere -> transport from the uniform sphere -> composition T^-1 o phi.

@@ -1,19 +1,78 @@
 #include "Pipeline/SphereStages.h"
 
+#include "Mesh/HoleFilling.h"
 #include "Pipeline/DiskStages.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
 namespace otparam
 {
 
+namespace
+{
+// Beyond this (largestHoleFraction) a fill is no hole of a closed surface but half of it: a
+// flat disk closed by its fill mapped with a mean |log area ratio| of 0.76.
+constexpr double LargestSphereHole = 0.1;
+
+// A connected genus-0 surface with boundary loops closed by filling every hole; "" or what
+// stops it. A closed surface is left as it is.
+std::string closeHoles(SphereConformalStage& stage)
+{
+  CompactedMesh& surface = stage.surface;
+  SurfaceTopology topology;
+  const std::string error = analyzeSurface(surface.mesh, topology, &surface.originalPointIds);
+  const auto loops = static_cast<long long>(topology.boundaryLoops.size());
+  if (!error.empty() || loops == 0 || topology.components != 1)
+  {
+    return error; // checkSphereTopology names the rest
+  }
+  std::ostringstream msg;
+  msg << "the surface has " << loops << " boundary loop" << (loops > 1 ? "s" : "");
+  const long long genus = (2 - topology.eulerCharacteristic - loops) / 2;
+  if (genus != 0)
+  {
+    msg << " and genus " << genus << " (Euler characteristic " << topology.eulerCharacteristic
+        << "); FillHoles closes holes, but the sphere needs genus 0";
+    return msg.str();
+  }
+  const double largest = largestHoleFraction(surface.mesh, topology.boundaryLoops);
+  if (largest > LargestSphereHole)
+  {
+    msg << ", the largest of which would cover " << percentOf(largest)
+        << " of the surface (a round disk of its length): the sphere takes closed surfaces, "
+           "and closed scans whose holes cover at most "
+        << percentOf(LargestSphereHole) << " (use the Disk domain)";
+    return msg.str();
+  }
+  FilledSurface filled;
+  const std::string fillError =
+    fillHoles(surface.mesh, topology.boundaryLoops, topology.boundaryLoops.size(), filled);
+  if (!fillError.empty())
+  {
+    return msg.str() + ", and " + fillError;
+  }
+  stage.filledHoles = filled.filledHoles;
+  stage.fillAreaFraction = filled.fillAreaFraction;
+  surface.mesh = std::move(filled.mesh);
+  surface.originalPointIds.resize(surface.mesh.points.size(), -1);
+  return {};
+}
+} // namespace
+
 SphereConformalStage runSphereConformalStage(
-  const TriangleSoup& soup, const ConformalSphereMapOptions& options)
+  const TriangleSoup& soup, const ConformalSphereMapOptions& options, bool fillHoles)
 {
   SphereConformalStage stage;
   Status& status = stage.status;
   std::string error = compactMesh(soup.points, soup.triangles, stage.surface);
+  stage.inputPoints = stage.surface.mesh.points.size();
+  stage.inputTriangles = stage.surface.mesh.triangles.size();
+  if (error.empty() && fillHoles)
+  {
+    error = closeHoles(stage);
+  }
   if (error.empty())
   {
     error = checkSphereTopology(stage.surface.mesh, &stage.surface.originalPointIds);
@@ -55,6 +114,27 @@ SphereConformalStage runSphereConformalStage(
   status.warnings = stage.map.status.warnings;
   addConformalWarnings(stage.surface, stage.figures, "sphere", status);
   return stage;
+}
+
+void keepInputPart(SphereConformalStage& stage, std::vector<std::vector<Vec3>*> perPointMaps)
+{
+  if (stage.surface.mesh.points.size() == stage.inputPoints &&
+    stage.surface.mesh.triangles.size() == stage.inputTriangles)
+  {
+    return;
+  }
+  SurfaceMesh& mesh = stage.surface.mesh;
+  mesh.points.resize(stage.inputPoints);
+  mesh.triangles.resize(stage.inputTriangles);
+  stage.surface.originalPointIds.resize(stage.inputPoints);
+  perPointMaps.push_back(&stage.map.sphere);
+  for (std::vector<Vec3>* map : perPointMaps)
+  {
+    map->resize(std::min(map->size(), stage.inputPoints));
+  }
+  stage.figures = measureSphereDistortion(mesh, stage.map.sphere);
+  computeSphereAreaDensity(
+    mesh, stage.map.sphere, stage.areaDensityPerTriangle, stage.areaDensityPerPoint);
 }
 
 SphereSamplingStage runSphereSamplingStage(const std::vector<Vec3>& spherePoints,

@@ -20,14 +20,26 @@ namespace otparam
 struct SphereConformalStage
 {
   Status status;
-  CompactedMesh surface;        // the soup's referenced part (ids of the stage's outputs)
+  // The soup's referenced part (ids of the stage's outputs), then any hole fill, as on the disk
+  // (ConformalStage): the input's points and triangles are the first inputPoints /
+  // inputTriangles.
+  CompactedMesh surface;
+  std::size_t inputPoints = 0, inputTriangles = 0;
+  int filledHoles = 0;
+  double fillAreaFraction = 0.0; // the fill's share of the surface area (and of the sphere)
   ConformalSphereMapResult map; // map.sphere per point of `surface`
   DistortionFigures figures;    // of the conformal map
   std::vector<double> areaDensityPerTriangle, areaDensityPerPoint; // surface over sphere area
 };
 
+// fillHoles: a connected genus-0 surface with boundary loops (a closed scan with holes) is
+// closed for the computation by filling every hole; keepInputPart drops the fill again.
 SphereConformalStage runSphereConformalStage(
-  const TriangleSoup& soup, const ConformalSphereMapOptions& options);
+  const TriangleSoup& soup, const ConformalSphereMapOptions& options, bool fillHoles = false);
+
+// Drops the hole fill from a stage's surface, map, densities and figures (measured again on
+// the input's own triangles); `perPointMaps` are cut to the input's points as well.
+void keepInputPart(SphereConformalStage& stage, std::vector<std::vector<Vec3>*> perPointMaps = {});
 
 // ---- Stage 2: samples of equal mass of a per-triangle density on the sphere.
 struct SphereSamplingStage

@@ -1,5 +1,5 @@
 // Hole filling on planar disks with 1, 3 and 10 round holes: every loop but the outer one is
-// closed, the input's points and triangles stay the leading part in their order, the result
+// closed (for the sphere every one), the input's points and triangles stay the leading part in their order, the result
 // is a disk, and the planar fill covers exactly the holes (fairing a planar rim in a plane
 // keeps it planar, so the fill's area is the holes' area).
 #include "Mesh/HoleFilling.h"
@@ -134,4 +134,45 @@ TEST(HoleFilling, KeepsTheLongestLoopByLength)
   {
     EXPECT_NEAR(std::hypot(mesh.points[v].x, mesh.points[v].y), 1.0, 1e-12);
   }
+}
+
+// For the sphere every loop is closed, the rim too: the holed disk becomes a closed genus-0
+// surface, its own points and triangles still the leading part.
+TEST(HoleFilling, ClosesEveryLoopForTheSphere)
+{
+  double holesArea = 0.0;
+  const SurfaceMesh mesh = diskWithHoles(holesOf(3), holesArea);
+  SurfaceTopology topology;
+  ASSERT_EQ(analyzeSurface(mesh, topology), "");
+  FilledSurface filled;
+  ASSERT_EQ(fillHoles(mesh, topology.boundaryLoops, topology.boundaryLoops.size(), filled), "");
+  EXPECT_EQ(filled.filledHoles, 4);
+  for (size_t t = 0; t < mesh.triangles.size(); ++t)
+  {
+    ASSERT_EQ(filled.mesh.triangles[t], mesh.triangles[t]);
+  }
+  EXPECT_EQ(checkSphereTopology(filled.mesh), "");
+}
+
+// The largest hole's share measured by a round disk of its length: exact for a round hole in
+// a plane (up to the polygon's chords), 0 without a loop.
+TEST(HoleFilling, LargestHoleFractionOfARoundHole)
+{
+  double holesArea = 0.0;
+  const SurfaceMesh mesh = diskWithHoles({ { { 0.0, 0.0 }, 0.5 } }, holesArea);
+  SurfaceTopology topology;
+  ASSERT_EQ(analyzeSurface(mesh, topology), "");
+  // Without the rim the inner loop is the longest: a disk of radius ~0.5 over an annulus of
+  // area ~pi (1 - 0.25).
+  const std::vector<std::vector<int>> inner = {
+    topology.boundaryLoops[1 - longestLoop(mesh, topology.boundaryLoops)]
+  };
+  double surfaceArea = 0.0;
+  for (const Triangle& t : mesh.triangles)
+  {
+    surfaceArea += triangleArea(mesh, t);
+  }
+  EXPECT_NEAR(
+    largestHoleFraction(mesh, inner), holesArea / surfaceArea, 0.05 * holesArea / surfaceArea);
+  EXPECT_EQ(largestHoleFraction(mesh, {}), 0.0);
 }
