@@ -2,6 +2,7 @@
 
 #include "Common/IdList.h"
 #include "Mesh/HoleFilling.h"
+#include "Pipeline/InputPart.h"
 
 #include <algorithm>
 #include <cmath>
@@ -199,22 +200,14 @@ ConformalStage runConformalStage(const TriangleSoup& soup, const ConformalStageO
 //------------------------------------------------------------------------------
 void keepInputPart(ConformalStage& stage, std::vector<std::vector<Vec2>*> perPointMaps)
 {
-  if (stage.surface.mesh.points.size() == stage.inputPoints &&
-    stage.surface.mesh.triangles.size() == stage.inputTriangles)
-  {
-    return;
-  }
-  SurfaceMesh& mesh = stage.surface.mesh;
-  mesh.points.resize(stage.inputPoints);
-  mesh.triangles.resize(stage.inputTriangles);
-  stage.surface.originalPointIds.resize(stage.inputPoints);
-  perPointMaps.push_back(&stage.map.uv);
-  for (std::vector<Vec2>* map : perPointMaps)
-  {
-    map->resize(std::min(map->size(), stage.inputPoints));
-  }
-  stage.figures = measureDistortion(mesh, stage.map.uv);
-  computeAreaDensity(mesh, stage.map.uv, stage.areaDensityPerTriangle, stage.areaDensityPerPoint);
+  dropHoleFill(stage, stage.map.uv, std::move(perPointMaps),
+    [&stage]
+    {
+      const SurfaceMesh& mesh = stage.surface.mesh;
+      stage.figures = measureDistortion(mesh, stage.map.uv);
+      computeAreaDensity(
+        mesh, stage.map.uv, stage.areaDensityPerTriangle, stage.areaDensityPerPoint);
+    });
 }
 
 //------------------------------------------------------------------------------

@@ -2,6 +2,7 @@
 
 #include "Mesh/HoleFilling.h"
 #include "Pipeline/DiskStages.h"
+#include "Pipeline/InputPart.h"
 
 #include <algorithm>
 #include <cmath>
@@ -118,23 +119,14 @@ SphereConformalStage runSphereConformalStage(
 
 void keepInputPart(SphereConformalStage& stage, std::vector<std::vector<Vec3>*> perPointMaps)
 {
-  if (stage.surface.mesh.points.size() == stage.inputPoints &&
-    stage.surface.mesh.triangles.size() == stage.inputTriangles)
-  {
-    return;
-  }
-  SurfaceMesh& mesh = stage.surface.mesh;
-  mesh.points.resize(stage.inputPoints);
-  mesh.triangles.resize(stage.inputTriangles);
-  stage.surface.originalPointIds.resize(stage.inputPoints);
-  perPointMaps.push_back(&stage.map.sphere);
-  for (std::vector<Vec3>* map : perPointMaps)
-  {
-    map->resize(std::min(map->size(), stage.inputPoints));
-  }
-  stage.figures = measureSphereDistortion(mesh, stage.map.sphere);
-  computeSphereAreaDensity(
-    mesh, stage.map.sphere, stage.areaDensityPerTriangle, stage.areaDensityPerPoint);
+  dropHoleFill(stage, stage.map.sphere, std::move(perPointMaps),
+    [&stage]
+    {
+      const SurfaceMesh& mesh = stage.surface.mesh;
+      stage.figures = measureSphereDistortion(mesh, stage.map.sphere);
+      computeSphereAreaDensity(
+        mesh, stage.map.sphere, stage.areaDensityPerTriangle, stage.areaDensityPerPoint);
+    });
 }
 
 SphereSamplingStage runSphereSamplingStage(const std::vector<Vec3>& spherePoints,
