@@ -48,8 +48,8 @@ def parse_arguments(argv):
     parser.add_argument("-o", "--output", required=True, metavar="OUTDIR",
                         help="output directory (created if needed)")
     parser.add_argument("--domain", choices=DOMAINS, default="auto",
-                        help="auto (default): closed surfaces onto the sphere, others onto "
-                             "the disk")
+                        help="auto (default): closed surfaces, and closed scans whose holes "
+                             "are all small, onto the sphere; others onto the disk")
     parser.add_argument("--samples", type=int, default=0, metavar="N",
                         help="samples (Diracs) of the transport; 0 (default): automatic, 5000 "
                              "or one per 50 points, whichever is more")
@@ -60,7 +60,8 @@ def parse_arguments(argv):
     parser.add_argument("--sampling", choices=SAMPLING, default="adaptive",
                         help="adaptive (default), uniform, or the mesh vertices")
     parser.add_argument("--no-fill-holes", action="store_true",
-                        help="refuse disk-like surfaces with holes instead of filling them")
+                        help="refuse surfaces with holes instead of filling them (a disk's "
+                             "extra boundary loops, a closed scan's holes)")
     parser.add_argument("--no-area-correction", action="store_true",
                         help="skip the composition's area-correction sweeps")
     parser.add_argument("--correction-sweeps", type=int, default=200, metavar="K",
