@@ -61,11 +61,13 @@ int vtkConformalSphereMap::Execute(
     vtkErrorMacro(<< error);
     return 0;
   }
-  const otparam::SphereConformalStage stage = otparam::runSphereConformalStage(soup, options);
+  otparam::SphereConformalStage stage =
+    otparam::runSphereConformalStage(soup, options, this->FillHoles);
   if (!this->ReportStatus(stage.status))
   {
     return 0;
   }
+  otparam::keepInputPart(stage);
 
   const otparam::CompactedMesh& surface = stage.surface;
   const otparam::ConformalSphereMapResult& map = stage.map;
@@ -98,6 +100,8 @@ int vtkConformalSphereMap::Execute(
   AddIdScalar(output, "PunctureTriangleId", map.punctureTriangle);
   AddIntScalar(output, "FixedPoints", map.fixedPoints);
   AddIntScalar(output, "Mirrored", map.mirrored ? 1 : 0);
+  AddIntScalar(output, "FilledHoles", stage.filledHoles);
+  AddScalar(output, "FillAreaFraction", stage.fillAreaFraction);
   AddIntScalar(output, "FlippedWithMeshLaplacian", map.flippedWithMeshLaplacian);
   AddIntScalar(output, "IntrinsicLaplacian", map.intrinsicLaplacian ? 1 : 0);
   AddScalar(output, "SecondsFactorization", map.secondsFactorization);
@@ -114,4 +118,5 @@ void vtkConformalSphereMap::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "PunctureTriangleId: " << this->PunctureTriangleId << "\n";
   os << indent << "BalanceTolerance: " << this->BalanceTolerance << "\n";
   os << indent << "MaximumBalanceIterations: " << this->MaximumBalanceIterations << "\n";
+  os << indent << "FillHoles: " << this->FillHoles << "\n";
 }

@@ -10,8 +10,8 @@
  * method and why). The work is done by the VTK-free OTParam core; this class converts data.
  *
  * Input: a vtkPolyData made of triangles only (apply vtkTriangleFilter to polygons or strips;
- * vertices and lines are rejected), closed, connected, of genus 0. Points used by no triangle
- * are left out of the output.
+ * vertices and lines are rejected), closed (or with small holes, see FillHoles), connected, of
+ * genus 0. Points used by no triangle are left out of the output.
  *
  * Output: the same triangles, in the same order, with points on the unit sphere, every
  * triangle counter-clockwise seen from outside (an inward-oriented input is mapped to the
@@ -29,14 +29,16 @@
  * `MeanQuasiConformalDilatation`, `MaximumQuasiConformalDilatation`, `FlippedTriangles`,
  * `MeanAbsLogAreaRatio`, `MaximumAbsLogAreaRatio`, `MaximumRadiusError` (largest ||p| - 1|),
  * `BalanceResidual` (|centre of mass of the pushed area| / total area), `BalanceIterations`,
- * `PunctureTriangleId` (the triangle actually used), `FixedPoints`, `Mirrored`,
+ * `PunctureTriangleId` (the triangle actually used), `FixedPoints`, `Mirrored`, `FilledHoles`,
+ * `FillAreaFraction`,
  * `FlippedWithMeshLaplacian` and `IntrinsicLaplacian` (int: when the mesh's own cotangent
  * Laplacian flips triangles, the map is computed again with the intrinsic Delaunay Laplacian
  * and kept if it flips fewer), `SecondsFactorization`, `SecondsSolve`, `SecondsBalance`,
  * `SecondsTotal`.
  *
  * Bad input (no triangles, non-triangle cells, NaN coordinates, zero-area triangles,
- * non-manifold edges or vertices, inconsistent orientation, several components, a boundary,
+ * non-manifold edges or vertices, inconsistent orientation, several components, a boundary
+ * (with FillHoles: holes larger than 10%),
  * genus > 0, PunctureTriangleId out of range, absurd BalanceTolerance or
  * MaximumBalanceIterations) is reported with vtkErrorMacro naming the problem and where; the
  * output is then empty and the input untouched. Progress is reported and AbortExecute honoured.
@@ -81,6 +83,20 @@ public:
   vtkGetMacro(MaximumBalanceIterations, int);
   ///@}
 
+  ///@{
+  /**
+   * A closed scan with holes (a connected genus-0 surface with boundary loops, the largest
+   * covering at most 10% of it as a round disk of its length): on (default), every hole is
+   * closed for the computation with CGAL's hole filling (triangulate, refine, fair) and the
+   * fill is dropped from the output, which has exactly the input's referenced points and
+   * triangles (field data `FilledHoles`, `FillAreaFraction`: the fill's share of the surface
+   * area, hence of the sphere). Off: such a surface is refused.
+   */
+  vtkSetMacro(FillHoles, bool);
+  vtkGetMacro(FillHoles, bool);
+  vtkBooleanMacro(FillHoles, bool);
+  ///@}
+
 protected:
   vtkConformalSphereMap();
   ~vtkConformalSphereMap() override;
@@ -92,6 +108,7 @@ protected:
   // The core's ConformalSphereMapOptions defaults, set by the constructor.
   double BalanceTolerance;
   int MaximumBalanceIterations;
+  bool FillHoles = true;
 
 private:
   vtkConformalSphereMap(const vtkConformalSphereMap&) = delete;
