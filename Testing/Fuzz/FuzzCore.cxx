@@ -694,13 +694,17 @@ CaseResult fuzzConformalSphere(Rng& rng)
   {
     mutateMesh(soup, rng);
   }
-  const SphereConformalStage stage = runSphereConformalStage(soup, ConformalSphereMapOptions());
+  // With FillHoles the mutations' holes are closed for the map, then the fill dropped.
+  SphereConformalStage stage =
+    runSphereConformalStage(soup, ConformalSphereMapOptions(), rng() % 2);
   if (!stage.status.error.empty() || stage.status.aborted)
   {
     return refused(stage.status);
   }
   Accepted = true;
-  if (stage.map.sphere.size() != stage.surface.mesh.points.size() || !finite(stage.map.sphere))
+  keepInputPart(stage);
+  if (stage.map.sphere.size() != stage.surface.mesh.points.size() || !finite(stage.map.sphere) ||
+    stage.surface.mesh.points.size() != stage.inputPoints)
   {
     return "a conformal sphere map called good has non-finite or missing coordinates";
   }
