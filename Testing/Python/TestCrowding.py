@@ -16,6 +16,7 @@ import math
 
 from otparam import vtkAreaPreservingParam
 from otparam_test_utils import MessageRecorder, check, field_value, finish, make_domain
+from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.vtkCommonCore import vtkCommand
 
 
@@ -114,6 +115,26 @@ for length, stages, area in ((10, 0, 0.03), (20, 1, 0.03), (30, 2, 0.04)):
           and fig["MeanAbsLogAreaRatio"] <= area and fig["TransportStages"] == stages,
           f"closed, L/rho {length}: on the sphere, converged, no flip, {stages} staged "
           f"transport(s), mean |log area ratio| <= {area} ({fig})")
+# The same closed finger scanned with two holes (a triangle cut out near the tip and one on the
+# half sphere): filled for the sphere and staged at once.
+surface = finger(30, closed=True)
+cut = {surface.GetNumberOfPolys() - 30, 300}
+holed = vtkAreaPreservingParam()
+holed.SetInputData(make_domain(
+    vtk_to_numpy(surface.GetPoints().GetData()).tolist(),
+    [tuple(int(v) for v in t) for k, t in
+     enumerate(vtk_to_numpy(surface.GetPolys().GetConnectivityArray()).reshape(-1, 3))
+     if k not in cut]))
+errors = MessageRecorder(holed)
+holed.Update()
+out = holed.GetOutput()
+check(not errors.messages and out.GetNumberOfPoints() == surface.GetNumberOfPoints()
+      and field_value(out, "Domain") == 2 and field_value(out, "FilledHoles") == 2
+      and field_value(out, "TransportStages") == 2 and field_value(out, "Converged") == 1
+      and field_value(out, "FlippedTriangles") == 0
+      and field_value(out, "MeanAbsLogAreaRatio") <= 0.04,
+      f"closed with two holes, L/rho 30: filled, staged, no flip ({errors.text()})")
+
 fig, errors, warnings = run(40, closed=True)
 text = errors.text().lower()
 check(not fig and "crowds part of the surface" in text and "stage 1 of the staged transport" in text
