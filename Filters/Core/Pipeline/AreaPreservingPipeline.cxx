@@ -140,12 +140,8 @@ void compose(const AreaPreservingOptions& options, AreaPreservingResult& run)
 
 constexpr double CrowdedDensityRange = 1e12;
 
-// Domain Automatic sends a surface whose holes are all small to the sphere (FillHoles closes
-// them): through a small boundary loop the disk map crowds the whole surface (spot_closed_3k
-// with one triangle cut out: mean |log area ratio| 3.96; with holes of 0.7% / 1.6% / 2.7% of
-// its area: 0.064 / 0.042 / 0.017; on the sphere 0.009). The shared disk meshes' loops span
-// 1.8% (bunny_holes_35k's largest) to 97% by largestHoleFraction.
-constexpr double SmallHoleFraction = 0.01;
+// Domain Automatic sends a surface whose holes are all small (SmallHoleFraction, DiskStages.h)
+// to the sphere, FillHoles closing them.
 
 // Crowding: along a long protrusion (a finger, a limb, a tail) the conformal area density grows
 // like exp(2 L / r); the transport converges while the density spans up to ~3e12 and stops at
@@ -411,26 +407,6 @@ void warnAboutTheSampleCount(std::int64_t samples, std::size_t points, Status& s
   status.warnings.push_back(msg.str());
 }
 
-// A disk map through a small hole (Domain Disk, or FillHoles off) crowds the whole surface.
-void warnAboutASmallBoundary(ConformalStage& conformal)
-{
-  if (!conformal.status.ok())
-  {
-    return;
-  }
-  const double fraction = largestHoleFraction(conformal.surface.mesh, { conformal.boundaryLoop });
-  if (fraction <= SmallHoleFraction)
-  {
-    std::ostringstream msg;
-    msg << "The boundary loop is small (a round disk of its length would cover "
-        << percentOf(fraction)
-        << " of the surface): the disk map squeezes the whole surface through it, and its area "
-           "and angle distortion are far above a map onto the sphere's. Domain Sphere (or "
-           "Automatic with FillHoles on) closes the hole and maps the surface onto the sphere.";
-    conformal.status.warnings.push_back(msg.str());
-  }
-}
-
 // The options with NumberOfSamples 0 (automatic) resolved for this surface.
 AreaPreservingOptions withSampleCount(
   const AreaPreservingOptions& requested, const TriangleSoup& surface)
@@ -597,7 +573,6 @@ AreaPreservingResult parameterizeDisk(
       ConformalStageOptions conformalOptions = options.conformal;
       conformalOptions.map.progress = stageProgress(options, ConformalRange);
       run.conformal = runConformalStage(surface, conformalOptions);
-      warnAboutASmallBoundary(run.conformal);
     },
     [&]
     {

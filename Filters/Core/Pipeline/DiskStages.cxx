@@ -194,6 +194,16 @@ ConformalStage runConformalStage(const TriangleSoup& soup, const ConformalStageO
       std::abs(std::hypot(stage.map.uv[v].x, stage.map.uv[v].y) - 1.0));
   }
   addConformalWarnings(stage.surface, stage.figures, "disk", status);
+  const double hole = largestHoleFraction(mesh, { stage.boundaryLoop });
+  if (hole <= SmallHoleFraction)
+  {
+    status.warnings.push_back("The boundary loop is small (a round disk of its length would "
+                              "cover " +
+      percentOf(hole) +
+      " of the surface): the disk map squeezes the whole surface through it. A map onto the "
+      "sphere with the hole closed fits such a surface better (vtkConformalSphereMap, or Domain "
+      "Sphere of the area-preserving parameterization; FillHoles closes the hole).");
+  }
   return stage;
 }
 
