@@ -447,6 +447,37 @@ if os.environ.get("OTPARAM_SHARED_DATA_DIR"):
     Delete(bunny)
     Delete(bunny_reader)
 
+# ---- A closed scan with small holes (three triangles cut out of the shared spot, written as an
+# OBJ file): Domain Automatic takes it to the sphere with the holes filled, and Conformal
+# Sphere Map fills them too (Fill Holes on by default); both keep the input's points and cells.
+if os.environ.get("OTPARAM_SHARED_DATA_DIR"):
+    spot_lines = open(os.path.join(os.environ["OTPARAM_SHARED_DATA_DIR"], "meshes",
+                                   "spot_closed_3k.obj")).read().splitlines()
+    faces = [k for k, line in enumerate(spot_lines) if line.startswith("f ")]
+    holed_path = os.path.join(work_dir, "spot_3_holes.obj")
+    cut = {faces[10], faces[500], faces[2000]}
+    with open(holed_path, "w") as holed_file:
+        holed_file.write("\n".join(line for k, line in enumerate(spot_lines) if k not in cut) + "\n")
+    holed_reader = OpenDataFile(holed_path)
+    read = servermanager.Fetch(holed_reader)
+    for proxy in (AreaPreservingParameterization(Input=holed_reader),
+                  ConformalSphereMap(Input=holed_reader)):
+        check(proxy.FillHoles == 1, "FillHoles is on by default")
+        proxy.UpdatePipeline()
+        mapped = servermanager.Fetch(proxy, idx=0)
+        hfd = mapped.GetFieldData()
+        figure = {name: hfd.GetArray(name).GetValue(0) if hfd.GetArray(name) else None
+                  for name in ("FilledHoles", "Domain", "FlippedTriangles")}
+        print(f"spot with 3 holes, {proxy.GetXMLLabel()}: {figure}", flush=True)
+        check(mapped.GetNumberOfPoints() == read.GetNumberOfPoints()
+              and mapped.GetNumberOfCells() == read.GetNumberOfCells()
+              and figure["FilledHoles"] == 3 and figure["FlippedTriangles"] == 0
+              and figure["Domain"] in (None, 2),
+              f"spot with 3 holes, {proxy.GetXMLLabel()}: filled, on the sphere, the input's "
+              f"points and cells ({figure})")
+        Delete(proxy)
+    Delete(holed_reader)
+
 # ---- A closed surface: Domain Automatic (the default) maps it onto the unit sphere.
 closed = Triangulate(Input=Sphere(ThetaResolution=16, PhiResolution=12))
 on_sphere = AreaPreservingParameterization(Input=closed)
