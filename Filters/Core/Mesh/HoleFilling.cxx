@@ -98,10 +98,11 @@ std::size_t longestLoop(const SurfaceMesh& mesh, const std::vector<std::vector<i
 std::string fillHolesButLongest(
   const SurfaceMesh& mesh, const std::vector<std::vector<int>>& loops, FilledSurface& filled)
 {
-  const std::string error = fillHoles(mesh, loops, longestLoop(mesh, loops), filled);
+  const std::size_t kept = longestLoop(mesh, loops);
+  const std::string error = fillHoles(mesh, loops, kept, filled);
   if (error.empty())
   {
-    filled.boundaryLoop = loops[longestLoop(mesh, loops)];
+    filled.boundaryLoop = loops[kept];
   }
   return error;
 }

@@ -296,18 +296,20 @@ std::string transportStage(
   const auto transport =
     Staging::transport(diracs, masses, transportOptions, options.maximumArcAngle);
   run.status.aborted = transport.status.aborted;
-  if (!transportFailure(transport).empty())
+  const std::string transportError = transportFailure(transport);
+  if (!transportError.empty())
   {
-    return transportFailure(transport);
+    return transportError;
   }
   CompositionOptions compositionOptions = options.composition;
   compositionOptions.correctAreas = false;
   compositionOptions.progress = keepGoing;
   const auto composed = Staging::compose(run, sampling, transport, diracs, compositionOptions);
   run.status.aborted = composed.status.aborted;
-  if (!compositionFailure(composed).empty())
+  const std::string compositionError = compositionFailure(composed);
+  if (!compositionError.empty())
   {
-    return compositionFailure(composed);
+    return compositionError;
   }
   Staging::adopt(run, composed);
   return {};

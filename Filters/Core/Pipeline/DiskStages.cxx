@@ -108,10 +108,7 @@ std::string makeDisk(const ConformalStageOptions& options, ConformalStage& stage
     {
       return msg.str() + ", and " + error;
     }
-    stage.filledHoles = filled.filledHoles;
-    stage.fillAreaFraction = filled.fillAreaFraction;
-    surface.mesh = std::move(filled.mesh);
-    surface.originalPointIds.resize(surface.mesh.points.size(), -1);
+    adoptHoleFill(stage, std::move(filled));
     error = checkDiskTopology(surface.mesh, stage.boundaryLoop, &surface.originalPointIds);
     return error.empty() ? error : "closing its holes gave a surface that is not a disk: " + error;
   }

@@ -4,11 +4,25 @@
 #ifndef OTPARAM_PIPELINE_INPUTPART_H
 #define OTPARAM_PIPELINE_INPUTPART_H
 
+#include "Mesh/HoleFilling.h"
+
 #include <algorithm>
+#include <utility>
 #include <vector>
 
 namespace otparam
 {
+
+// Takes a hole fill into the stage: the filled mesh as its surface (fill points have original
+// id -1), the fill's counts for the figures.
+template <class Stage>
+void adoptHoleFill(Stage& stage, FilledSurface&& filled)
+{
+  stage.filledHoles = filled.filledHoles;
+  stage.fillAreaFraction = filled.fillAreaFraction;
+  stage.surface.mesh = std::move(filled.mesh);
+  stage.surface.originalPointIds.resize(stage.surface.mesh.points.size(), -1);
+}
 
 // Cuts the stage's surface, `map` and `perPointMaps` to the input's points and triangles, then
 // `remeasure()`s the stage's figures and densities; nothing when there is no fill.

@@ -54,10 +54,7 @@ std::string closeHoles(SphereConformalStage& stage)
   {
     return msg.str() + ", and " + fillError;
   }
-  stage.filledHoles = filled.filledHoles;
-  stage.fillAreaFraction = filled.fillAreaFraction;
-  surface.mesh = std::move(filled.mesh);
-  surface.originalPointIds.resize(surface.mesh.points.size(), -1);
+  adoptHoleFill(stage, std::move(filled));
   return {};
 }
 } // namespace
