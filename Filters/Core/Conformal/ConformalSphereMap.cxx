@@ -342,21 +342,12 @@ std::string checkOptions(const ConformalSphereMapOptions& options, const Surface
   return msg.str();
 }
 
-ConformalSphereMapResult computeWithLaplacian(
-  const SurfaceMesh& mesh, const ConformalSphereMapOptions& options, bool intrinsicLaplacian)
+// The metric the Laplacian is built on: the mesh's own triangles, or the intrinsic Delaunay
+// triangulation of their edge lengths.
+IntrinsicTriangulation metricTriangulation(const SurfaceMesh& mesh, bool intrinsic)
 {
-  ConformalSphereMapResult result;
-  auto keepGoing = [&](double fraction)
-  {
-    result.status.aborted = options.progress && !options.progress(fraction);
-    return !result.status.aborted;
-  };
-  const int nv = static_cast<int>(mesh.points.size());
-  const size_t nt = mesh.triangles.size();
-
-  auto t0 = Clock::now();
-  std::vector<std::array<double, 3>> lengths(nt);
-  for (size_t t = 0; t < nt; ++t)
+  std::vector<std::array<double, 3>> lengths(mesh.triangles.size());
+  for (size_t t = 0; t < mesh.triangles.size(); ++t)
   {
     const auto& tri = mesh.triangles[t];
     for (int k = 0; k < 3; ++k)
@@ -364,56 +355,84 @@ ConformalSphereMapResult computeWithLaplacian(
       lengths[t][k] = norm(mesh.points[tri[(k + 1) % 3]] - mesh.points[tri[(k + 2) % 3]]);
     }
   }
-  const IntrinsicTriangulation triangulation = intrinsicLaplacian
-    ? intrinsicDelaunay(mesh.triangles, lengths)
-    : IntrinsicTriangulation{ mesh.triangles, lengths, 0 };
-  result.intrinsicFlips = triangulation.flips;
-  const SparseMatrix L = cotangentLaplacian(triangulation, nv);
-  const char* factorError =
-    "the cotangent Laplacian could not be factored (degenerate or badly shaped triangles?)";
+  return intrinsic ? intrinsicDelaunay(mesh.triangles, lengths)
+                   : IntrinsicTriangulation{ mesh.triangles, lengths, 0 };
+}
 
-  // 1. North pass: L z = the discrete dipole at the puncture's centroid, whose continuous
-  // solution is 1 / w (w a complex coordinate of the triangle's plane): in weak form, corner k
-  // gets 2 pi (d/dx - i d/dy) of its hat function (constant factors dropped: the scale is
-  // fixed below).
-  result.punctureTriangle =
-    options.punctureTriangle >= 0 ? options.punctureTriangle : mostRegularTriangle(mesh);
-  const Triangle puncture = mesh.triangles[result.punctureTriangle];
-  std::vector<char> fixed(nv, 0);
-  Eigen::MatrixXd X = Eigen::MatrixXd::Zero(nv, 2);
-  Eigen::MatrixXd dipole = Eigen::MatrixXd::Zero(nv, 2);
+// The north pass's source: the discrete dipole at the puncture's centroid, whose continuous
+// solution is 1 / w (w a complex coordinate of the triangle's plane): in weak form, corner k
+// gets 2 pi (d/dx - i d/dy) of its hat function (constant factors dropped: the scale is fixed
+// by scaleLikeFlash).
+Eigen::MatrixXd punctureDipole(const SurfaceMesh& mesh, const Triangle& puncture)
+{
+  Eigen::MatrixXd dipole = Eigen::MatrixXd::Zero(static_cast<int>(mesh.points.size()), 2);
+  const Vec3 A = mesh.points[puncture[0]], B = mesh.points[puncture[1]],
+             C = mesh.points[puncture[2]];
+  const Vec3 normal = normalized(cross(B - A, C - A));
+  const Vec3 e1 = normalized(B - A), e2 = cross(normal, e1);
+  // Hat-function gradients up to the common factor 1 / (2 area): normal x opposite edge.
+  const Vec3 gradient[3] = { cross(normal, C - B), cross(normal, A - C), cross(normal, B - A) };
+  for (int k = 0; k < 3; ++k)
   {
-    const Vec3 A = mesh.points[puncture[0]], B = mesh.points[puncture[1]],
-               C = mesh.points[puncture[2]];
-    const Vec3 normal = normalized(cross(B - A, C - A));
-    const Vec3 e1 = normalized(B - A), e2 = cross(normal, e1);
-    // Hat-function gradients up to the common factor 1 / (2 area): normal x opposite edge.
-    const Vec3 gradient[3] = { cross(normal, C - B), cross(normal, A - C), cross(normal, B - A) };
-    for (int k = 0; k < 3; ++k)
-    {
-      dipole.row(puncture[k]) << dot(gradient[k], e1), -dot(gradient[k], e2);
-    }
-    // The Neumann problem's gauge: one point pinned at 0, any point off the puncture (the
-    // source sums to zero, so the dropped equation holds by itself).
-    int gauge = 0;
-    while (gauge == puncture[0] || gauge == puncture[1] || gauge == puncture[2])
-    {
-      ++gauge;
-    }
-    fixed[gauge] = 1;
+    dipole.row(puncture[k]) << dot(gradient[k], e1), -dot(gradient[k], e2);
   }
-  if (!solveDirichlet(L, fixed, X, [&] { return keepGoing(0.25); }, &dipole))
-  {
-    result.status.error = result.status.aborted ? "" : factorError;
-    return result;
-  }
-  result.secondsFactorization = secondsSince(t0);
-  if (!keepGoing(0.3))
-  {
-    return result;
-  }
+  return dipole;
+}
 
-  t0 = Clock::now();
+// The Neumann problem's gauge: one point pinned at 0, any point off the puncture (the source
+// sums to zero, so the dropped equation holds by itself).
+int gaugePoint(const Triangle& puncture)
+{
+  int gauge = 0;
+  while (gauge == puncture[0] || gauge == puncture[1] || gauge == puncture[2])
+  {
+    ++gauge;
+  }
+  return gauge;
+}
+
+// Scale so that the puncture (near infinity) and the triangle nearest 0 have comparable sizes
+// on the sphere, as FLASH does: else the far side of the surface can sit in a speck around the
+// south pole whose shape double precision barely resolves.
+void scaleLikeFlash(const SurfaceMesh& mesh, int punctureTriangle, std::vector<Complex>& z)
+{
+  auto side = [&](const Triangle& t, auto coordinate)
+  {
+    return (std::abs(coordinate(t[0]) - coordinate(t[1])) +
+             std::abs(coordinate(t[1]) - coordinate(t[2])) +
+             std::abs(coordinate(t[2]) - coordinate(t[0]))) /
+      3.0;
+  };
+  int inner = -1;
+  double innerSize = std::numeric_limits<double>::infinity();
+  for (size_t t = 0; t < mesh.triangles.size(); ++t)
+  {
+    const auto& tri = mesh.triangles[t];
+    const double size = std::abs(z[tri[0]]) + std::abs(z[tri[1]]) + std::abs(z[tri[2]]);
+    if (static_cast<int>(t) != punctureTriangle && size < innerSize)
+    {
+      innerSize = size;
+      inner = static_cast<int>(t);
+    }
+  }
+  const double north = side(mesh.triangles[punctureTriangle], [&](int v) { return z[v]; });
+  const double south = side(mesh.triangles[inner], [&](int v) { return 1.0 / std::conj(z[v]); });
+  const double scale = std::sqrt(south / north);
+  if (std::isfinite(scale) && scale > 0.0)
+  {
+    for (Complex& w : z)
+    {
+      w *= scale;
+    }
+  }
+}
+
+// The north pass's plane coordinates, centred, scaled and projected onto the sphere (the
+// puncture at the north pole).
+std::vector<Vec3> northPassSphere(
+  const SurfaceMesh& mesh, int punctureTriangle, const Eigen::MatrixXd& X)
+{
+  const int nv = static_cast<int>(X.rows());
   std::vector<Complex> z(nv);
   Complex mean = 0.0;
   for (int v = 0; v < nv; ++v)
@@ -425,95 +444,52 @@ ConformalSphereMapResult computeWithLaplacian(
   {
     w -= mean;
   }
-  // Scale so that the puncture (near infinity) and the triangle nearest 0 have comparable
-  // sizes on the sphere, as FLASH does: else the far side of the surface can sit in a speck
-  // around the south pole whose shape double precision barely resolves.
-  {
-    auto side = [&](const Triangle& t, auto coordinate)
-    {
-      return (std::abs(coordinate(t[0]) - coordinate(t[1])) +
-               std::abs(coordinate(t[1]) - coordinate(t[2])) +
-               std::abs(coordinate(t[2]) - coordinate(t[0]))) /
-        3.0;
-    };
-    int inner = -1;
-    double innerSize = std::numeric_limits<double>::infinity();
-    for (size_t t = 0; t < nt; ++t)
-    {
-      const auto& tri = mesh.triangles[t];
-      const double size = std::abs(z[tri[0]]) + std::abs(z[tri[1]]) + std::abs(z[tri[2]]);
-      if (static_cast<int>(t) != result.punctureTriangle && size < innerSize)
-      {
-        innerSize = size;
-        inner = static_cast<int>(t);
-      }
-    }
-    const double north = side(puncture, [&](int v) { return z[v]; });
-    const double south = side(mesh.triangles[inner], [&](int v) { return 1.0 / std::conj(z[v]); });
-    const double scale = std::sqrt(south / north);
-    if (std::isfinite(scale) && scale > 0.0)
-    {
-      for (Complex& w : z)
-      {
-        w *= scale;
-      }
-    }
-  }
+  scaleLikeFlash(mesh, punctureTriangle, z);
   std::vector<Vec3> sphere(nv);
   for (int v = 0; v < nv; ++v)
   {
     sphere[v] = inverseStereographic(z[v]);
   }
+  return sphere;
+}
 
-  // 2. Balance the first pass (the puncture's own image is the complement of a triangle: left
-  // out), tracking the image of the north pole, the puncture's direction.
-  std::vector<double> weight = areaWeights(mesh);
-  Vec3 north{ 0.0, 0.0, 1.0 };
-  {
-    std::vector<double> firstWeight = weight;
-    firstWeight[result.punctureTriangle] = 0.0;
-    // Roughly: it only chooses the second pass's pole and fixed points.
-    balance(mesh.triangles, firstWeight, sphere, north, 1e-3, 50);
-  }
-  if (!keepGoing(0.4))
-  {
-    return result;
-  }
-  result.secondsSolve = secondsSince(t0);
-
-  // 3. South pass: the points farthest from the puncture stay, the rest is solved again in the
-  // stereographic plane of the puncture's antipode.
-  t0 = Clock::now();
-  north = normalized(north);
-  const Vec3 helper = std::abs(north.x) < 0.6 ? Vec3{ 1.0, 0.0, 0.0 } : Vec3{ 0.0, 1.0, 0.0 };
-  const Vec3 e1 = normalized(cross(helper, north));
-  const Vec3 e2 = cross(north, e1);
+// The south pass's Dirichlet points: the `count` points farthest from the puncture (lowest
+// along `north`). The puncture's corners are always solved again (on a tiny surface they
+// would otherwise be among the "farthest" points).
+std::vector<char> farthestFromPuncture(
+  const std::vector<Vec3>& sphere, const Triangle& puncture, Vec3 north, int count)
+{
+  const int nv = static_cast<int>(sphere.size());
   std::vector<double> height(nv);
-  for (int v = 0; v < nv; ++v)
-  {
-    height[v] = dot(sphere[v], north);
-  }
-  // The puncture's corners are always solved again (on a tiny surface they would otherwise be
-  // among the "farthest" points), and at least one point stays fixed.
   std::vector<int> order;
   for (int v = 0; v < nv; ++v)
   {
+    height[v] = dot(sphere[v], north);
     if (v != puncture[0] && v != puncture[1] && v != puncture[2])
     {
       order.push_back(v);
     }
   }
-  // A harmonic extension needs boundary values around the free region: at least 3 fixed
-  // points (with 1, the extension is constant). Below 6 points the first pass stands alone.
-  result.fixedPoints =
-    nv < 6 ? 0 : std::clamp(static_cast<int>(std::lround(options.fixedFraction * nv)), 3, nv - 3);
-  std::nth_element(order.begin(), order.begin() + std::max(0, result.fixedPoints - 1), order.end(),
+  std::nth_element(order.begin(), order.begin() + std::max(0, count - 1), order.end(),
     [&](int a, int b) { return height[a] < height[b]; });
-  std::fill(fixed.begin(), fixed.end(), 0);
-  for (int i = 0; i < result.fixedPoints; ++i)
+  std::vector<char> fixed(nv, 0);
+  for (int i = 0; i < count; ++i)
   {
     fixed[order[i]] = 1;
   }
+  return fixed;
+}
+
+// The south pass: the points not fixed are solved again in the stereographic plane of the
+// puncture's antipode, the fixed ones as Dirichlet values.
+bool solveSouthPass(const SparseMatrix& L, const std::vector<char>& fixed, Vec3 north,
+  std::vector<Vec3>& sphere, const std::function<bool()>& keepGoing)
+{
+  const Vec3 helper = std::abs(north.x) < 0.6 ? Vec3{ 1.0, 0.0, 0.0 } : Vec3{ 0.0, 1.0, 0.0 };
+  const Vec3 e1 = normalized(cross(helper, north));
+  const Vec3 e2 = cross(north, e1);
+  const int nv = static_cast<int>(sphere.size());
+  Eigen::MatrixXd X(nv, 2);
   for (int v = 0; v < nv; ++v)
   {
     // 1 + x.n = |x + n|^2 / 2 keeps its precision near the projection's pole -n.
@@ -522,12 +498,11 @@ ConformalSphereMapResult computeWithLaplacian(
     X(v, 0) = dot(sphere[v], e1) / denominator;
     X(v, 1) = dot(sphere[v], e2) / denominator;
   }
-  if (result.fixedPoints > 0 && !solveDirichlet(L, fixed, X, [&] { return keepGoing(0.6); }))
+  if (!solveDirichlet(L, fixed, X, keepGoing))
   {
-    result.status.error = result.status.aborted ? "" : factorError;
-    return result;
+    return false;
   }
-  for (int v = 0; v < nv && result.fixedPoints > 0; ++v)
+  for (int v = 0; v < nv; ++v)
   {
     if (!fixed[v])
     {
@@ -536,14 +511,13 @@ ConformalSphereMapResult computeWithLaplacian(
         (2.0 * u / (1.0 + s)) * e1 + (2.0 * w / (1.0 + s)) * e2 + ((1.0 - s) / (1.0 + s)) * north);
     }
   }
-  result.secondsFactorization += secondsSince(t0);
-  if (!keepGoing(0.7))
-  {
-    return result;
-  }
+  return true;
+}
 
-  // 4. Orientation, then the final balancing.
-  t0 = Clock::now();
+// Step 4: the image made orientation-consistent, then balanced.
+void orientAndBalance(const SurfaceMesh& mesh, const ConformalSphereMapOptions& options, Vec3 north,
+  std::vector<Vec3>& sphere, ConformalSphereMapResult& result)
+{
   if (signedVolume(sphere, mesh.triangles) < 0.0)
   {
     for (Vec3& p : sphere)
@@ -552,7 +526,7 @@ ConformalSphereMapResult computeWithLaplacian(
     }
   }
   result.mirrored = signedVolume(mesh.points, mesh.triangles) < 0.0;
-  const BalanceOutcome outcome = balance(mesh.triangles, weight, sphere, north,
+  const BalanceOutcome outcome = balance(mesh.triangles, areaWeights(mesh), sphere, north,
     options.balanceTolerance, options.maximumBalanceIterations);
   result.balanceIterations = outcome.iterations;
   result.balanceResidual = outcome.residual;
@@ -563,14 +537,18 @@ ConformalSphereMapResult computeWithLaplacian(
         << " from the origin (asked: " << options.balanceTolerance << ")";
     result.status.warnings.push_back(msg.str());
   }
-  result.secondsBalance = secondsSince(t0);
+}
+
+// The map, if finite, and its figures.
+void keepFinite(const SurfaceMesh& mesh, std::vector<Vec3> sphere, ConformalSphereMapResult& result)
+{
   for (const Vec3& p : sphere)
   {
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
     {
       result.status.error = "the spherical conformal map has non-finite coordinates (the "
                             "cotangent Laplacian is too ill-conditioned on this surface)";
-      return result;
+      return;
     }
   }
   result.sphere = std::move(sphere);
@@ -578,7 +556,92 @@ ConformalSphereMapResult computeWithLaplacian(
   result.flippedTriangles = figures.flippedTriangles;
   result.meanAngleDistortionDegrees = figures.meanAngleDistortionDegrees;
   result.maximumAngleDistortionDegrees = figures.maximumAngleDistortionDegrees;
-  keepGoing(1.0);
+}
+
+ConformalSphereMapResult computeWithLaplacian(
+  const SurfaceMesh& mesh, const ConformalSphereMapOptions& options, bool intrinsicLaplacian)
+{
+  ConformalSphereMapResult result;
+  auto keepGoing = [&](double fraction)
+  {
+    result.status.aborted = options.progress && !options.progress(fraction);
+    return !result.status.aborted;
+  };
+  auto failed = [&]
+  {
+    result.status.error = result.status.aborted
+      ? ""
+      : "the cotangent Laplacian could not be factored (degenerate or badly shaped triangles?)";
+    return result;
+  };
+  const int nv = static_cast<int>(mesh.points.size());
+
+  // 1. North pass: the dipole's harmonic potential, onto the sphere.
+  auto t0 = Clock::now();
+  const IntrinsicTriangulation triangulation = metricTriangulation(mesh, intrinsicLaplacian);
+  result.intrinsicFlips = triangulation.flips;
+  const SparseMatrix L = cotangentLaplacian(triangulation, nv);
+  result.punctureTriangle =
+    options.punctureTriangle >= 0 ? options.punctureTriangle : mostRegularTriangle(mesh);
+  const Triangle puncture = mesh.triangles[result.punctureTriangle];
+  std::vector<char> gauge(nv, 0);
+  gauge[gaugePoint(puncture)] = 1;
+  Eigen::MatrixXd X = Eigen::MatrixXd::Zero(nv, 2);
+  const Eigen::MatrixXd dipole = punctureDipole(mesh, puncture);
+  if (!solveDirichlet(
+        L, gauge, X, [&] { return keepGoing(0.25); }, &dipole))
+  {
+    return failed();
+  }
+  result.secondsFactorization = secondsSince(t0);
+  if (!keepGoing(0.3))
+  {
+    return result;
+  }
+  t0 = Clock::now();
+  std::vector<Vec3> sphere = northPassSphere(mesh, result.punctureTriangle, X);
+
+  // 2. Balance the first pass (the puncture's own image is the complement of a triangle: left
+  // out), tracking the image of the north pole, the puncture's direction. Roughly: it only
+  // chooses the second pass's pole and fixed points.
+  Vec3 north{ 0.0, 0.0, 1.0 };
+  std::vector<double> firstWeight = areaWeights(mesh);
+  firstWeight[result.punctureTriangle] = 0.0;
+  balance(mesh.triangles, firstWeight, sphere, north, 1e-3, 50);
+  if (!keepGoing(0.4))
+  {
+    return result;
+  }
+  result.secondsSolve = secondsSince(t0);
+
+  // 3. South pass: the points farthest from the puncture stay, the rest is solved again. A
+  // harmonic extension needs boundary values around the free region: at least 3 fixed points
+  // (with 1, the extension is constant). Below 6 points the first pass stands alone.
+  t0 = Clock::now();
+  north = normalized(north);
+  result.fixedPoints =
+    nv < 6 ? 0 : std::clamp(static_cast<int>(std::lround(options.fixedFraction * nv)), 3, nv - 3);
+  if (result.fixedPoints > 0 &&
+    !solveSouthPass(L, farthestFromPuncture(sphere, puncture, north, result.fixedPoints), north,
+      sphere, [&] { return keepGoing(0.6); }))
+  {
+    return failed();
+  }
+  result.secondsFactorization += secondsSince(t0);
+  if (!keepGoing(0.7))
+  {
+    return result;
+  }
+
+  // 4. Orientation, then the final balancing.
+  t0 = Clock::now();
+  orientAndBalance(mesh, options, north, sphere, result);
+  result.secondsBalance = secondsSince(t0);
+  keepFinite(mesh, std::move(sphere), result);
+  if (result.status.ok())
+  {
+    keepGoing(1.0);
+  }
   return result;
 }
 } // namespace
