@@ -66,6 +66,7 @@ int vtkConformalDiskMap::Execute(
     return 0;
   }
   otparam::ConformalStage stage = otparam::runConformalStage(soup, options);
+  otparam::warnAboutUnreferencedPoints(stage.surface.unreferencedPoints, false, stage.status);
   if (!this->ReportStatus(stage.status))
   {
     return 0;

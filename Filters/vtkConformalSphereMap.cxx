@@ -63,6 +63,7 @@ int vtkConformalSphereMap::Execute(
   }
   otparam::SphereConformalStage stage =
     otparam::runSphereConformalStage(soup, options, this->FillHoles);
+  otparam::warnAboutUnreferencedPoints(stage.surface.unreferencedPoints, false, stage.status);
   if (!this->ReportStatus(stage.status))
   {
     return 0;

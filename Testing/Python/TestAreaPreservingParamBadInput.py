@@ -3,7 +3,10 @@ message prefixed by its name, its own parameters are checked before any work, an
 RequestData fails, all three outputs are empty, the input is untouched, and the filter works
 again once the input is fixed. Abort leaves the outputs empty."""
 
-from bad_disk_inputs import INF, NAN, SURFACE_CASES, collapsed_edge, good_disk, reversed_triangle
+import math
+
+from bad_disk_inputs import (INF, NAN, SURFACE_CASES, collapsed_edge, good_disk, reversed_triangle,
+                             with_unreferenced_point)
 from otparam import vtkAreaPreservingParam
 from otparam_test_utils import (MessageRecorder, cell_lists, check, check_abort, check_failed_run,
                                 field_value, finish, same, snapshot)
@@ -99,6 +102,25 @@ check(not errors.messages and out.GetNumberOfPoints() == good_disk().GetNumberOf
       and out.GetNumberOfPolys() == good_disk().GetNumberOfPolys() - 2
       and field_value(out, "FlippedTriangles") == 0 and field_value(out, "Converged") == 1,
       f"coincident points after vtkCleanPolyData: mapped ({errors.text()})")
+
+# A point used by no triangle: the output keeps every input point, that one with NaN
+# coordinates, and the one warning says so (not the conformal stage's "left out").
+surface = with_unreferenced_point(3)
+param = vtkAreaPreservingParam()
+param.SetNumberOfSamples(200)
+param.SetInputData(surface)
+errors = MessageRecorder(param)
+warnings = MessageRecorder(param, vtkCommand.WarningEvent)
+param.Update()
+out = param.GetOutput()
+uv = out.GetPointData().GetArray("AreaPreservingCoordinates")
+check(not errors.messages and out.GetNumberOfPoints() == surface.GetNumberOfPoints()
+      and all(math.isnan(c) for c in uv.GetTuple2(3))
+      and not any(math.isnan(c) for c in uv.GetTuple2(4)),
+      f"unreferenced point: kept, NaN coordinates, the others mapped ({errors.text()})")
+check(len(warnings.messages) == 1 and "1 input point(s) belong to no triangle and keep NaN"
+      in warnings.text() and "left out" not in warnings.text(),
+      f"unreferenced point: one warning that says NaN ({warnings.text()})")
 
 # Abort: the outputs stay empty and a warning says so.
 param = vtkAreaPreservingParam()

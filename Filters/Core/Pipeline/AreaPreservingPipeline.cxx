@@ -454,6 +454,7 @@ void chainStages(const AreaPreservingOptions& options, const TriangleSoup& surfa
   {
     return;
   }
+  warnAboutUnreferencedPoints(run.conformal.surface.unreferencedPoints, true, run.status);
   timed(run.secondsSampling, sample);
   if (!passOn(run.sampling.status, SamplingRange, run.status))
   {

@@ -190,7 +190,7 @@ ConformalStage runConformalStage(const TriangleSoup& soup, const ConformalStageO
     stage.maximumBoundaryRadiusError = std::max(stage.maximumBoundaryRadiusError,
       std::abs(std::hypot(stage.map.uv[v].x, stage.map.uv[v].y) - 1.0));
   }
-  addConformalWarnings(stage.surface, stage.figures, "disk", status);
+  addConformalWarnings(stage.figures, "disk", status);
   const double hole = largestHoleFraction(mesh, { stage.boundaryLoop });
   if (hole <= SmallHoleFraction)
   {
@@ -373,23 +373,29 @@ double NewtonProgress::operator()(int iteration, double relativeError)
 }
 
 //------------------------------------------------------------------------------
-void addConformalWarnings(const CompactedMesh& surface, const DistortionFigures& figures,
-  const char* domain, Status& status)
+void addConformalWarnings(const DistortionFigures& figures, const char* domain, Status& status)
 {
-  std::ostringstream msg;
-  if (surface.unreferencedPoints > 0)
-  {
-    msg << surface.unreferencedPoints
-        << " input point(s) belong to no triangle and are left out of the output; the point "
-           "array vtkOriginalPointIds gives each output point's input id.";
-    status.warnings.push_back(msg.str());
-    msg.str("");
-  }
   if (figures.flippedTriangles > 0)
   {
+    std::ostringstream msg;
     msg << figures.flippedTriangles << " triangle(s) are flipped in the " << domain << " image.";
     status.warnings.push_back(msg.str());
   }
+}
+
+//------------------------------------------------------------------------------
+void warnAboutUnreferencedPoints(std::int64_t count, bool keptAsNaN, Status& status)
+{
+  if (count == 0)
+  {
+    return;
+  }
+  std::ostringstream msg;
+  msg << count << " input point(s) belong to no triangle and "
+      << (keptAsNaN ? "keep NaN map coordinates in the output."
+                    : "are left out of the output; the point array vtkOriginalPointIds gives "
+                      "each output point's input id.");
+  status.warnings.push_back(msg.str());
 }
 
 //------------------------------------------------------------------------------

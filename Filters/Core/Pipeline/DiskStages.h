@@ -121,10 +121,14 @@ private:
   double Fraction = 0.0;
 };
 
-// The conformal stages' warnings (either domain): input points left out, flipped triangles in
-// the `domain` ("disk", "sphere") image.
-void addConformalWarnings(const CompactedMesh& surface, const DistortionFigures& figures,
-  const char* domain, Status& status);
+// The conformal stages' warning (either domain): flipped triangles in the `domain` ("disk",
+// "sphere") image.
+void addConformalWarnings(const DistortionFigures& figures, const char* domain, Status& status);
+
+// What becomes of input points that no triangle uses depends on the filter: the stage filters
+// leave them out of their output (`keptAsNaN` false), the whole map keeps every input point and
+// gives those NaN coordinates (true).
+void warnAboutUnreferencedPoints(std::int64_t count, bool keptAsNaN, Status& status);
 
 // The warning of a transport solve (disk or sphere) that stopped before Tolerance: how far it
 // got, the solver's reason, and that the outputs hold the last iterate with Converged = 0.

@@ -110,7 +110,7 @@ SphereConformalStage runSphereConformalStage(
     return stage;
   }
   status.warnings = stage.map.status.warnings;
-  addConformalWarnings(stage.surface, stage.figures, "sphere", status);
+  addConformalWarnings(stage.figures, "sphere", status);
   return stage;
 }
 
