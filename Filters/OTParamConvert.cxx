@@ -302,6 +302,26 @@ vtkSmartPointer<vtkIdTypeArray> MakeOriginalPointIds(const std::vector<std::int6
 }
 
 //------------------------------------------------------------------------------
+void CopyInputArrays(
+  vtkPolyData* input, const std::vector<std::int64_t>& originalPointIds, vtkPolyData* output)
+{
+  vtkPointData* points = output->GetPointData();
+  points->CopyNormalsOff();
+  const auto n = static_cast<vtkIdType>(originalPointIds.size());
+  points->CopyAllocate(input->GetPointData(), n);
+  for (vtkIdType v = 0; v < n; ++v)
+  {
+    points->CopyData(input->GetPointData(), originalPointIds[v], v);
+  }
+  vtkCellData* cells = output->GetCellData();
+  cells->ShallowCopy(input->GetCellData());
+  if (vtkDataArray* normals = cells->GetNormals())
+  {
+    cells->RemoveArray(normals->GetName());
+  }
+}
+
+//------------------------------------------------------------------------------
 void AddDistortionArrays(vtkCellData* cellData, const otparam::DistortionFigures& figures)
 {
   cellData->AddArray(MakeDoubleArray("AngleDistortion", figures.angleDistortion));

@@ -65,6 +65,12 @@ void AddString(vtkDataObject* data, const char* name, const std::string& value);
 
 // vtkOriginalPointIds: the input point id of each output point.
 vtkSmartPointer<vtkIdTypeArray> MakeOriginalPointIds(const std::vector<std::int64_t>& ids);
+// The input's point arrays on the points kept (output point v is input point
+// originalPointIds[v]) and its cell arrays (the same triangles in the same order), for the
+// maps' outputs in the disk or on the sphere. Normals are left out: they are the surface's and
+// would shade the disk or the sphere as if it were the surface.
+void CopyInputArrays(
+  vtkPolyData* input, const std::vector<std::int64_t>& originalPointIds, vtkPolyData* output);
 
 // Per triangle: AngleDistortion, QuasiConformalDilatation, LogAreaRatio.
 void AddDistortionArrays(vtkCellData* cellData, const otparam::DistortionFigures& figures);

@@ -85,12 +85,14 @@ std::vector<int> Checkerboard(const otparam::SphereParameterizationResult& run)
     run.conformal.surface.mesh.triangles, run.composition.sphere, CheckerboardSectors);
 }
 
-// Port 1: the flattened disk mesh.
-void WriteDomainMesh(const otparam::AreaPreservingResult& run, vtkPolyData* disk)
+// Port 1: the flattened disk mesh, with the input's arrays.
+void WriteDomainMesh(
+  const otparam::AreaPreservingResult& run, vtkPolyData* input, vtkPolyData* disk)
 {
   const otparam::CompactedMesh& surface = run.conformal.surface;
   disk->SetPoints(MakePoints(run.composition.uv));
   disk->SetPolys(MakeTriangles(surface.mesh.triangles));
+  CopyInputArrays(input, surface.originalPointIds, disk);
   vtkPointData* pd = disk->GetPointData();
   pd->AddArray(MakeVec3Array("Coordinates3D", surface.mesh.points));
   pd->AddArray(MakeVec2Array("ConformalCoordinates", run.conformal.map.uv));
@@ -178,12 +180,14 @@ std::vector<otparam::Vec2> LongitudeLatitude(const std::vector<otparam::Vec3>& s
   return tcoords;
 }
 
-// Port 1 for the sphere: the area-preserving sphere mesh.
-void WriteDomainMesh(const otparam::SphereParameterizationResult& run, vtkPolyData* sphere)
+// Port 1 for the sphere: the area-preserving sphere mesh, with the input's arrays.
+void WriteDomainMesh(
+  const otparam::SphereParameterizationResult& run, vtkPolyData* input, vtkPolyData* sphere)
 {
   const otparam::CompactedMesh& surface = run.conformal.surface;
   sphere->SetPoints(MakePoints(run.composition.sphere));
   sphere->SetPolys(MakeTriangles(surface.mesh.triangles));
+  CopyInputArrays(input, surface.originalPointIds, sphere);
   vtkPointData* pd = sphere->GetPointData();
   pd->AddArray(MakeVec3Array("Coordinates3D", surface.mesh.points));
   pd->AddArray(MakeVec3Array("AreaPreservingCoordinates", run.composition.sphere));
@@ -235,7 +239,7 @@ void WriteRun(const Run& run, int bins, vtkPolyData* input, vtkInformationVector
 {
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   vtkPolyData* domainMesh = vtkPolyData::GetData(outputVector, 1);
-  WriteDomainMesh(run, domainMesh);
+  WriteDomainMesh(run, input, domainMesh);
   WriteSurface(run, input, output);
   WriteHistogramsOf(run, bins, vtkTable::GetData(outputVector, 2));
   const std::vector<int> checkerboard = Checkerboard(run);

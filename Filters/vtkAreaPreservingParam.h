@@ -45,7 +45,9 @@
  * `SecondsTransport`, `SecondsComposition`, `SecondsTotal`.
  *
  * Output port 1: the flattened area-preserving disk mesh: points (u, v, 0), the same triangles
- * and cell arrays, point arrays `Coordinates3D`, `ConformalCoordinates`, `vtkOriginalPointIds`.
+ * and cell arrays, the input's point and cell arrays (normals left out: they would shade the
+ * disk as the surface), point arrays `Coordinates3D`, `ConformalCoordinates`,
+ * `vtkOriginalPointIds`.
  *
  * Output port 2: a vtkTable of histograms, NumberOfHistogramBins rows, for ParaView's bar
  * chart view: for each of `ConformalAngleDistortion`, `AreaPreservingAngleDistortion`,

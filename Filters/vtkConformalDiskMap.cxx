@@ -79,18 +79,13 @@ int vtkConformalDiskMap::Execute(
   const auto n = static_cast<vtkIdType>(surface.mesh.points.size());
   output->SetPoints(MakePoints(stage.map.uv));
   output->SetPolys(MakeTriangles(surface.mesh.triangles));
+  CopyInputArrays(input, surface.originalPointIds, output);
   vtkPointData* outPD = output->GetPointData();
-  outPD->CopyAllocate(input->GetPointData(), n);
-  for (vtkIdType v = 0; v < n; ++v)
-  {
-    outPD->CopyData(input->GetPointData(), surface.originalPointIds[v], v);
-  }
   outPD->AddArray(MakeVec3Array("Coordinates3D", surface.mesh.points));
   outPD->AddArray(MakeDoubleArray("AreaDensity", stage.areaDensityPerPoint));
   outPD->SetTCoords(MakeVec2Array("ConformalCoordinates", stage.map.uv));
   outPD->AddArray(MakeOriginalPointIds(surface.originalPointIds));
   vtkCellData* outCD = output->GetCellData();
-  outCD->ShallowCopy(input->GetCellData()); // same triangles in the same order
   outCD->AddArray(MakeDoubleArray("AreaDensity", stage.areaDensityPerTriangle));
   AddDistortionArrays(outCD, stage.figures);
 

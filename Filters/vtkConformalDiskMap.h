@@ -13,18 +13,18 @@
  * Input: a vtkPolyData made of triangles only (apply vtkTriangleFilter to polygons or strips;
  * vertices and lines are rejected). Points used by no triangle are left out of the output.
  *
- * Output: the same triangles, in the same order, with points (u, v, 0) in the unit disk.
- * Output point i is input point `vtkOriginalPointIds`[i] (the identity unless the input had
- * unreferenced points). Point arrays: the input's point arrays; `Coordinates3D` (the input
- * points); `AreaDensity` (surface area element over disk area element after scaling the surface
- * to total area pi, per point: area of the surface triangles around the point over that of
- * their disk images); texture coordinates `ConformalCoordinates` = (u, v); `vtkOriginalPointIds`.
- * Cell arrays: the input's cell arrays; `AreaDensity` (the exact ratio per triangle, which is
- * what vtkAdaptiveDensitySampler integrates); `AngleDistortion` (mean |log corner-angle
- * ratio|); `QuasiConformalDilatation` (sigma_max / sigma_min); `LogAreaRatio` (log of disk area
- * fraction over surface area fraction). Field data: `MeanAngleDistortion`,
- * `MaximumAngleDistortion` (degrees, mean and largest |disk angle - surface angle| over all
- * corners), `MeanQuasiConformalDilatation` (area-weighted), `MaximumQuasiConformalDilatation`,
+ * Output: the same triangles, in the same order, with points (u, v, 0) in the unit disk. Output
+ * point i is input point `vtkOriginalPointIds`[i] (the identity unless the input had unreferenced
+ * points). Point arrays: the input's point arrays but normals; `Coordinates3D` (the input points);
+ * `AreaDensity` (surface area element over disk area element after scaling the surface to total
+ * area pi, per point: area of the surface triangles around the point over that of their disk
+ * images); texture coordinates `ConformalCoordinates` = (u, v); `vtkOriginalPointIds`. Cell arrays:
+ * the input's cell arrays but normals; `AreaDensity` (the exact ratio per triangle, which is what
+ * vtkAdaptiveDensitySampler integrates); `AngleDistortion` (mean |log corner-angle ratio|);
+ * `QuasiConformalDilatation` (sigma_max / sigma_min); `LogAreaRatio` (log of disk area fraction
+ * over surface area fraction). Field data: `MeanAngleDistortion`, `MaximumAngleDistortion`
+ * (degrees, mean and largest |disk angle - surface angle| over all corners),
+ * `MeanQuasiConformalDilatation` (area-weighted), `MaximumQuasiConformalDilatation`,
  * `FlippedTriangles`, `MeanAbsLogAreaRatio`, `MaximumAbsLogAreaRatio`,
  * `MaximumBoundaryRadiusError`, `Iterations`, `ConformalEnergy`, `ClippedEars`,
  * `FoldedWithMeshLaplacian` and `IntrinsicLaplacian` (int: when the mesh's own cotangent
@@ -36,10 +36,10 @@
  *
  * Bad input (no triangles, non-triangle cells, NaN coordinates, zero-area triangles,
  * non-manifold edges or vertices, inconsistent orientation, several components, no boundary
- * loop, several with FillHoles off, genus > 0, CenterPointId / AlignPointId out of range or on the wrong side of
- * the boundary, absurd Tolerance or MaximumNumberOfIterations) is reported with vtkErrorMacro
- * naming the problem and where; the output is then empty and the input untouched. Progress
- * is reported and AbortExecute honoured.
+ * loop, several with FillHoles off, genus > 0, CenterPointId / AlignPointId out of range or on the
+ * wrong side of the boundary, absurd Tolerance or MaximumNumberOfIterations) is reported with
+ * vtkErrorMacro naming the problem and where; the output is then empty and the input untouched.
+ * Progress is reported and AbortExecute honoured.
  */
 #ifndef vtkConformalDiskMap_h
 #define vtkConformalDiskMap_h

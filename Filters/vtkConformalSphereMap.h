@@ -17,10 +17,12 @@
  * triangle counter-clockwise seen from outside (an inward-oriented input is mapped to the
  * mirror image, which is still conformal; field data `Mirrored` says so). Output point i is
  * input point `vtkOriginalPointIds`[i] (the identity unless the input had unreferenced points).
- * Point arrays: the input's point arrays; `Coordinates3D` (the input points); `AreaDensity`
+ * Point arrays: the input's point arrays but normals; `Coordinates3D` (the input points);
+ * `AreaDensity`
  * (surface area element over sphere area element after scaling the surface to total area
  * 4 pi, per point: area of the surface triangles around the point over that of their spherical
- * images); `vtkOriginalPointIds`. Cell arrays: the input's cell arrays; `AreaDensity` (the exact
+ * images); `vtkOriginalPointIds`. Cell arrays: the input's cell arrays but normals;
+ * `AreaDensity` (the exact
  * ratio per triangle, surface area over spherical triangle area: its integral over the sphere
  * is 4 pi; select it in vtkAdaptiveDensitySampler for the exact density); `AngleDistortion`,
  * `QuasiConformalDilatation`, `LogAreaRatio` (as vtkConformalDiskMap's, against the chordal
