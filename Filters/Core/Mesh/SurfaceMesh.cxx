@@ -399,7 +399,9 @@ std::string checkDiskTopology(const SurfaceMesh& mesh, std::vector<int>& boundar
   else if (loops == 0)
   {
     msg << "the surface is closed (no boundary loop, Euler characteristic " << euler
-        << "); a disk-like surface needs exactly 1 boundary loop";
+        << "); a disk-like surface needs exactly 1 boundary loop (a closed genus-0 surface maps "
+           "onto the sphere: vtkConformalSphereMap, or Domain Automatic or Sphere in "
+           "vtkAreaPreservingParam)";
   }
   else if (loops > 1)
   {
