@@ -260,10 +260,36 @@ void PowerDiagram::build(
   const std::vector<Vec2>& diracs, const std::vector<Height>& heights, WhenHidden whenHidden)
 {
   const int n = static_cast<int>(diracs.size());
-  const bool sameDiracs = Kept && triangulates(Kept->rt, diracs);
   Sites = diracs;
   Heights = heights;
   std::unique_ptr<Triangulation> fresh;
+  Triangulation* triangulation = this->triangulate(diracs, heights, whenHidden, fresh);
+  if (!triangulation)
+  {
+    return;
+  }
+  this->findHidden(*triangulation, n);
+  clearCells(n);
+  if (whenHidden != WhenHidden::FindAll && HiddenCount > 0)
+  {
+    return;
+  }
+  Dimension = triangulation->rt.dimension();
+  if (Dimension == 2)
+  {
+    this->buildPlanarCells(*triangulation, n);
+  }
+  else
+  {
+    this->buildLowDimensionalAdjacency(*triangulation, n);
+  }
+}
+
+PowerDiagram::Triangulation* PowerDiagram::triangulate(const std::vector<Vec2>& diracs,
+  const std::vector<Height>& heights, WhenHidden whenHidden, std::unique_ptr<Triangulation>& fresh)
+{
+  const int n = static_cast<int>(diracs.size());
+  const bool sameDiracs = Kept && triangulates(Kept->rt, diracs);
   std::vector<std::pair<int, Triangle>> certainlyHidden;
   using Flips = Triangulation::Flips;
   const Flips flips = sameDiracs
@@ -281,7 +307,7 @@ void PowerDiagram::build(
       HiddenFace[i] = face;
     }
     HiddenCount = static_cast<int>(std::count(Hidden.begin(), Hidden.end(), 1));
-    return;
+    return nullptr;
   }
   if (flips != Flips::Regular)
   {
@@ -302,8 +328,12 @@ void PowerDiagram::build(
       Kept = std::move(fresh);
     }
   }
-  Regular& rt = fresh ? fresh->rt : Kept->rt;
+  return fresh ? fresh.get() : Kept.get();
+}
 
+void PowerDiagram::findHidden(const Triangulation& triangulation, int n)
+{
+  const Regular& rt = triangulation.rt;
   Hidden.assign(n, 1);
   for (auto v = rt.finite_vertices_begin(); v != rt.finite_vertices_end(); ++v)
   {
@@ -320,82 +350,81 @@ void PowerDiagram::build(
       HiddenFace[v->info()] = { f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info() };
     }
   }
-  clearCells(n);
-  if (whenHidden != WhenHidden::FindAll && HiddenCount > 0)
+}
+
+// Each power vertex is computed once and shared by its three cells, so that the clipped cells
+// tile the domain exactly: with per-cell clipping, every cell rounds its own copy of a vertex
+// and the overlaps and gaps (~1e-16 x edge length each) add up over 1e5 cells to more than
+// 1e-10 of a cell's mass. Faces are numbered serially; their power vertices and the rings
+// around the Diracs are then filled in parallel (serially they cost nearly as much as the
+// insertion).
+void PowerDiagram::buildPlanarCells(Triangulation& triangulation, int n)
+{
+  Regular& rt = triangulation.rt;
+  const int faceCount = static_cast<int>(rt.number_of_faces());
+  Triangles.resize(faceCount);
+  int face = 0;
+  for (auto f = rt.finite_faces_begin(); f != rt.finite_faces_end(); ++f)
   {
-    return;
+    f->info() = face;
+    Triangles[face++] = { f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info() };
   }
-  Dimension = rt.dimension();
-  if (Dimension == 2)
+  auto infinite = rt.incident_faces(rt.infinite_vertex()), infiniteEnd = infinite;
+  do
   {
-    // Each power vertex is computed once and shared by its three cells, so that the clipped
-    // cells tile the domain exactly: with per-cell clipping, every cell rounds its own copy of
-    // a vertex and the overlaps and gaps (~1e-16 x edge length each) add up over 1e5 cells to
-    // more than 1e-10 of a cell's mass.
-    // Faces are numbered serially; their power vertices and the rings around the Diracs are
-    // then filled in parallel (serially they cost nearly as much as the insertion).
-    const int faceCount = static_cast<int>(rt.number_of_faces());
-    Triangles.resize(faceCount);
-    int face = 0;
-    for (auto f = rt.finite_faces_begin(); f != rt.finite_faces_end(); ++f)
-    {
-      f->info() = face;
-      Triangles[face++] = { f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info() };
-    }
-    auto infinite = rt.incident_faces(rt.infinite_vertex()), infiniteEnd = infinite;
+    infinite->info() = -1;
+  } while (++infinite != infiniteEnd);
+  PowerVertices.resize(faceCount);
+  PowerVertexCorrections.resize(faceCount);
+#pragma omp parallel for schedule(static)
+  for (int f = 0; f < faceCount; ++f)
+  {
+    const Triangle& t = Triangles[f];
+    powerVertex(t[0], t[1], t[2], PowerVertices[f], PowerVertexCorrections[f]);
+  }
+  // Faces around each Dirac, counter-clockwise, and the neighbour across the edge that follows
+  // each face (-1: the edge to the infinite vertex), in rows by Dirac id; visited in the
+  // triangulation's own (spatially sorted) order, which keeps the circulators' memory accesses
+  // local.
+  std::vector<Regular::Vertex_handle> vertices;
+  vertices.reserve(rt.number_of_vertices());
+  for (auto v = rt.finite_vertices_begin(); v != rt.finite_vertices_end(); ++v)
+  {
+    vertices.push_back(v);
+  }
+  const int vertexCount = static_cast<int>(vertices.size());
+#pragma omp parallel for schedule(static)
+  for (int k = 0; k < vertexCount; ++k)
+  {
+    Offsets[vertices[k]->info() + 1] = static_cast<int>(rt.degree(vertices[k]));
+  }
+  for (int i = 0; i < n; ++i)
+  {
+    Offsets[i + 1] += Offsets[i];
+  }
+  RingFace.resize(Offsets[n]);
+  Adjacency.resize(Offsets[n]);
+#pragma omp parallel for schedule(static)
+  for (int k = 0; k < vertexCount; ++k)
+  {
+    const auto v = vertices[k];
+    int slot = Offsets[v->info()];
+    auto fc = rt.incident_faces(v), done = fc;
     do
     {
-      infinite->info() = -1;
-    } while (++infinite != infiniteEnd);
-    PowerVertices.resize(faceCount);
-    PowerVertexCorrections.resize(faceCount);
-#pragma omp parallel for schedule(static)
-    for (int f = 0; f < faceCount; ++f)
-    {
-      const Triangle& t = Triangles[f];
-      powerVertex(t[0], t[1], t[2], PowerVertices[f], PowerVertexCorrections[f]);
-    }
-    // Faces around each Dirac, counter-clockwise, and the neighbour across the edge that
-    // follows each face (-1: the edge to the infinite vertex), in rows by Dirac id; visited in
-    // the triangulation's own (spatially sorted) order, which keeps the circulators' memory
-    // accesses local.
-    std::vector<Regular::Vertex_handle> vertices;
-    vertices.reserve(rt.number_of_vertices());
-    for (auto v = rt.finite_vertices_begin(); v != rt.finite_vertices_end(); ++v)
-    {
-      vertices.push_back(v);
-    }
-    const int vertexCount = static_cast<int>(vertices.size());
-#pragma omp parallel for schedule(static)
-    for (int k = 0; k < vertexCount; ++k)
-    {
-      Offsets[vertices[k]->info() + 1] = static_cast<int>(rt.degree(vertices[k]));
-    }
-    for (int i = 0; i < n; ++i)
-    {
-      Offsets[i + 1] += Offsets[i];
-    }
-    RingFace.resize(Offsets[n]);
-    Adjacency.resize(Offsets[n]);
-#pragma omp parallel for schedule(static)
-    for (int k = 0; k < vertexCount; ++k)
-    {
-      const auto v = vertices[k];
-      int slot = Offsets[v->info()];
-      auto fc = rt.incident_faces(v), done = fc;
-      do
-      {
-        const auto next = fc->vertex(Regular::cw(fc->index(v)));
-        RingFace[slot] = fc->info();
-        Adjacency[slot] = rt.is_infinite(next) ? -1 : next->info();
-        ++slot;
-      } while (++fc != done);
-    }
-    return;
+      const auto next = fc->vertex(Regular::cw(fc->index(v)));
+      RingFace[slot] = fc->info();
+      Adjacency[slot] = rt.is_infinite(next) ? -1 : next->info();
+      ++slot;
+    } while (++fc != done);
   }
+}
 
-  // Dimension 0 or 1 (one Dirac, or all on a line): adjacency from the finite edges; cells are
-  // cut out of a box by half-planes.
+// Dimension 0 or 1 (one Dirac, or all on a line): adjacency from the finite edges; cells are
+// cut out of a box by half-planes.
+void PowerDiagram::buildLowDimensionalAdjacency(const Triangulation& triangulation, int n)
+{
+  const Regular& rt = triangulation.rt;
   std::vector<std::pair<int, int>> edges;
   for (auto e = rt.finite_edges_begin(); e != rt.finite_edges_end(); ++e)
   {

@@ -69,10 +69,18 @@ private:
   void powerVertex(int a, int b, int c, Vec2& rounded, Vec2& correction) const;
   void ringCell(int i, Vec2 lo, Vec2 hi, PowerCell& out) const;
   void clearCells(int n);
+  struct Triangulation;
+  // build's steps. The regular triangulation of the new heights (Kept flipped, or a fresh
+  // insertion held in `fresh` or moved into Kept); null when the flips stopped at a hidden Dirac
+  // and the caller asked no more (Hidden and HiddenFace then set).
+  Triangulation* triangulate(const std::vector<Vec2>& diracs, const std::vector<Height>& heights,
+    WhenHidden whenHidden, std::unique_ptr<Triangulation>& fresh);
+  void findHidden(const Triangulation& triangulation, int n);
+  void buildPlanarCells(Triangulation& triangulation, int n); // dimension 2
+  void buildLowDimensionalAdjacency(const Triangulation& triangulation, int n);
 
   // The last regular triangulation: a build for the same Diracs under new heights flips it
   // (a Newton step changes few edges) instead of inserting every Dirac again.
-  struct Triangulation;
   std::unique_ptr<Triangulation> Kept;
   int Dimension = 0;
   std::vector<Vec2> PowerVertices; // one per finite face (weighted circumcentre)
