@@ -473,58 +473,16 @@ public:
       cl = { std::min(cl.x, p.x), std::min(cl.y, p.y) };
       ch = { std::max(ch.x, p.x), std::max(ch.y, p.y) };
     }
-    thread_local std::vector<Vec2> piece, scratch;
-    thread_local std::vector<size_t> crossing, usableEdges;
-    const double cellSize = norm(ch - cl);
-    std::vector<double> edgeIntegral(cell.vertices.size(), 0.0);
-    const Vec2 o = cell.vertices[0];
+    thread_local std::vector<Vec2> piece;
+    thread_local std::vector<size_t> usableEdges;
+    usableEdgesOf(cell, norm(ch - cl), usableEdges);
     const size_t n = cell.vertices.size();
-    usableEdges.clear();
-    for (size_t k = 0; k < n; ++k)
-    {
-      // Two cell vertices that are one point up to rounding make an edge with no usable
-      // direction that puts every triangle outside (measured: 1e-14 apart in a cell of 1e-7,
-      // and 7e-14 apart in a cell of 4e-7 at a hand's finger tip, density 1e10). Leaving an
-      // edge shorter than 1e-6 of the cell out changes its area by O(1e-12) relatively.
-      if (norm(cell.vertices[(k + 1) % n] - cell.vertices[k]) > 1e-6 * cellSize)
-      {
-        usableEdges.push_back(k);
-      }
-    }
-    const auto& points = domain->points;
+    std::vector<double> edgeIntegral(n, 0.0);
+    const Vec2 o = cell.vertices[0];
     domain->triangleBoxes.forOverlapping(cl, ch,
       [&](int t)
       {
-        const Triangle& tri = domain->triangles[t];
-        const Vec2 p0 = points[tri[0]], p1 = points[tri[1]], p2 = points[tri[2]];
-        // Clip only against the cell edges that cut the triangle; most triangles are inside
-        // every edge but one or two, or outside one edge (measured: 2x faster integration).
-        crossing.clear();
-        for (size_t k : usableEdges)
-        {
-          const Vec2 a = cell.vertices[k], d = cell.vertices[(k + 1) % n] - a;
-          const bool in0 = cross(d, p0 - a) >= 0.0, in1 = cross(d, p1 - a) >= 0.0,
-                     in2 = cross(d, p2 - a) >= 0.0;
-          if (!in0 && !in1 && !in2)
-          {
-            return;
-          }
-          if (!(in0 && in1 && in2))
-          {
-            crossing.push_back(k);
-          }
-        }
-        piece = { p0, p1, p2 };
-        for (size_t k : crossing)
-        {
-          clipLeftOf(piece, cell.vertices[k], cell.vertices[(k + 1) % n], scratch);
-          piece.swap(scratch);
-          if (piece.size() < 3)
-          {
-            break;
-          }
-        }
-        if (piece.size() < 3)
+        if (!clipToCell(t, cell, usableEdges, piece))
         {
           return;
         }
@@ -541,46 +499,9 @@ public:
         const double mv = d0 * m.my + f.cx * m.mxy + f.cy * m.myy;
         out.mass += mass;
         out.moment = out.moment + Vec2{ mu + o.x * mass, mv + o.y * mass };
-        if (!out.wantEdgeMass)
+        if (out.wantEdgeMass)
         {
-          return;
-        }
-        // Density along the cell's edges: pieces of this triangle's clipped boundary that lie on
-        // cell edge k. A cell edge lying exactly on a mesh edge is counted for the triangle on
-        // the cell's side only (a point nudged into the cell must be inside the triangle).
-        const size_t pm = piece.size();
-        for (size_t e = 0; e < pm; ++e)
-        {
-          const Vec2 a = piece[e], b = piece[(e + 1) % pm];
-          const double len = norm(b - a);
-          if (len == 0.0)
-          {
-            continue;
-          }
-          for (size_t k = 0; k < n; ++k)
-          {
-            const int nb = cell.neighbor[k];
-            if (nb < 0)
-            {
-              continue;
-            }
-            const Vec2 ca = cell.vertices[k], cb = cell.vertices[(k + 1) % n];
-            const Vec2 dir = cb - ca;
-            const double dl = norm(dir);
-            const double tol = 1e-12 * (dl + norm(ca - o) + 1e-300);
-            if (std::abs(cross(dir, a - ca)) > tol * dl || std::abs(cross(dir, b - ca)) > tol * dl)
-            {
-              continue;
-            }
-            const Vec2 mid = 0.5 * (a + b);
-            const Vec2 inward = (1e-9 * len / dl) * Vec2{ -dir.y, dir.x };
-            if (!insideTriangle(t, mid + inward))
-            {
-              break;
-            }
-            edgeIntegral[k] += 0.5 * len * (densityAt(t, a) + densityAt(t, b));
-            break;
-          }
+          addEdgeDensity(t, piece, cell, o, edgeIntegral);
         }
       });
     for (size_t k = 0; k < n; ++k)
@@ -588,6 +509,106 @@ public:
       if (cell.neighbor[k] >= 0 && edgeIntegral[k] > 0.0)
       {
         out.edgeMass.emplace_back(cell.neighbor[k], edgeIntegral[k]);
+      }
+    }
+  }
+
+  // Two cell vertices that are one point up to rounding make an edge with no usable direction
+  // that puts every triangle outside (measured: 1e-14 apart in a cell of 1e-7, and 7e-14 apart
+  // in a cell of 4e-7 at a hand's finger tip, density 1e10). Leaving an edge shorter than 1e-6
+  // of the cell out changes its area by O(1e-12) relatively.
+  static void usableEdgesOf(const PowerCell& cell, double cellSize, std::vector<size_t>& usable)
+  {
+    const size_t n = cell.vertices.size();
+    usable.clear();
+    for (size_t k = 0; k < n; ++k)
+    {
+      if (norm(cell.vertices[(k + 1) % n] - cell.vertices[k]) > 1e-6 * cellSize)
+      {
+        usable.push_back(k);
+      }
+    }
+  }
+
+  // Triangle t clipped to the cell, in `piece`; false when nothing of it is left.
+  bool clipToCell(int t, const PowerCell& cell, const std::vector<size_t>& usableEdges,
+    std::vector<Vec2>& piece) const
+  {
+    thread_local std::vector<Vec2> scratch;
+    thread_local std::vector<size_t> crossing;
+    const auto& points = domain->points;
+    const Triangle& tri = domain->triangles[t];
+    const Vec2 p0 = points[tri[0]], p1 = points[tri[1]], p2 = points[tri[2]];
+    const size_t n = cell.vertices.size();
+    // Clip only against the cell edges that cut the triangle; most triangles are inside every
+    // edge but one or two, or outside one edge (measured: 2x faster integration).
+    crossing.clear();
+    for (size_t k : usableEdges)
+    {
+      const Vec2 a = cell.vertices[k], d = cell.vertices[(k + 1) % n] - a;
+      const bool in0 = cross(d, p0 - a) >= 0.0, in1 = cross(d, p1 - a) >= 0.0,
+                 in2 = cross(d, p2 - a) >= 0.0;
+      if (!in0 && !in1 && !in2)
+      {
+        return false;
+      }
+      if (!(in0 && in1 && in2))
+      {
+        crossing.push_back(k);
+      }
+    }
+    piece = { p0, p1, p2 };
+    for (size_t k : crossing)
+    {
+      clipLeftOf(piece, cell.vertices[k], cell.vertices[(k + 1) % n], scratch);
+      piece.swap(scratch);
+      if (piece.size() < 3)
+      {
+        return false;
+      }
+    }
+    return true;
+  }
+
+  // Density along the cell's edges: pieces of triangle t's clipped boundary (`piece`) that lie
+  // on cell edge k add to edgeIntegral[k]. A cell edge lying exactly on a mesh edge is counted
+  // for the triangle on the cell's side only (a point nudged into the cell must be inside the
+  // triangle).
+  void addEdgeDensity(int t, const std::vector<Vec2>& piece, const PowerCell& cell, Vec2 o,
+    std::vector<double>& edgeIntegral) const
+  {
+    const size_t n = cell.vertices.size(), pm = piece.size();
+    for (size_t e = 0; e < pm; ++e)
+    {
+      const Vec2 a = piece[e], b = piece[(e + 1) % pm];
+      const double len = norm(b - a);
+      if (len == 0.0)
+      {
+        continue;
+      }
+      for (size_t k = 0; k < n; ++k)
+      {
+        const int nb = cell.neighbor[k];
+        if (nb < 0)
+        {
+          continue;
+        }
+        const Vec2 ca = cell.vertices[k], cb = cell.vertices[(k + 1) % n];
+        const Vec2 dir = cb - ca;
+        const double dl = norm(dir);
+        const double tol = 1e-12 * (dl + norm(ca - o) + 1e-300);
+        if (std::abs(cross(dir, a - ca)) > tol * dl || std::abs(cross(dir, b - ca)) > tol * dl)
+        {
+          continue;
+        }
+        const Vec2 mid = 0.5 * (a + b);
+        const Vec2 inward = (1e-9 * len / dl) * Vec2{ -dir.y, dir.x };
+        if (!insideTriangle(t, mid + inward))
+        {
+          break;
+        }
+        edgeIntegral[k] += 0.5 * len * (densityAt(t, a) + densityAt(t, b));
+        break;
       }
     }
   }
