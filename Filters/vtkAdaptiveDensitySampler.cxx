@@ -228,6 +228,44 @@ void AddUnreferencedNote(const otparam::CompactedMesh& domain, otparam::Status& 
 } // namespace
 
 //------------------------------------------------------------------------------
+struct vtkAdaptiveDensitySampler::Input
+{
+  otparam::CompactedMesh domain;     // points used by no triangle left out
+  bool sphere = false;               // on the unit sphere, else in the plane z = 0
+  std::vector<otparam::Vec2> points; // the planar domain's points
+  std::vector<double> perPoint, perTriangle;
+};
+
+//------------------------------------------------------------------------------
+// The domain (triangles in the plane z = 0, or on the unit sphere), then the density.
+std::string vtkAdaptiveDensitySampler::ReadInput(vtkPolyData* input, Input& read)
+{
+  otparam::TriangleSoup soup;
+  std::string error = ReadTriangleSoup(input, "input domain", soup);
+  if (error.empty())
+  {
+    error = otparam::compactMesh(soup.points, soup.triangles, read.domain);
+    error = error.empty() ? error : "The input domain is not a triangulation: " + error + ".";
+  }
+  read.sphere = error.empty() && IsSphereDomain(read.domain.mesh.points);
+  if (error.empty() && !read.sphere)
+  {
+    error = ReadPlanarPoints(
+      read.domain.mesh.points, read.domain.originalPointIds, "input domain", read.points);
+    error = error.empty() ? error : error + NotOnSphereHint(read.domain);
+  }
+  if (error.empty())
+  {
+    // The array chosen with SetInputArrayToProcess (the lookup is vtkAlgorithm's, protected).
+    int association = vtkDataObject::FIELD_ASSOCIATION_POINTS;
+    vtkAbstractArray* density = this->GetInputAbstractArrayToProcess(0, input, association);
+    error = ReadDensity(this->GetInputArrayInformation(0), density, association, input, read.domain,
+      read.perPoint, read.perTriangle);
+  }
+  return error;
+}
+
+//------------------------------------------------------------------------------
 int vtkAdaptiveDensitySampler::Execute(
   vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
@@ -242,43 +280,22 @@ int vtkAdaptiveDensitySampler::Execute(
   options.maximumNumberOfSamples = this->MaximumNumberOfSamples;
   options.minimumAngleDegrees = this->MinimumAngle;
   options.progress = this->ProgressCallback();
-  // Parameters first, then the domain (triangles in the plane z = 0, or on the unit sphere;
-  // points used by no triangle are left out), then the density.
+  // Parameters first, then the input.
   std::string error = otparam::checkSamplerOptions(options);
-  otparam::TriangleSoup soup;
-  otparam::CompactedMesh domain;
-  std::vector<otparam::Vec2> points;
-  std::vector<double> perPoint, perTriangle;
+  Input read;
   if (error.empty())
   {
-    error = ReadTriangleSoup(input, "input domain", soup);
-  }
-  if (error.empty())
-  {
-    error = otparam::compactMesh(soup.points, soup.triangles, domain);
-    error = error.empty() ? error : "The input domain is not a triangulation: " + error + ".";
-  }
-  const bool sphere = error.empty() && IsSphereDomain(domain.mesh.points);
-  if (error.empty() && !sphere)
-  {
-    error = ReadPlanarPoints(domain.mesh.points, domain.originalPointIds, "input domain", points);
-    error = error.empty() ? error : error + NotOnSphereHint(domain);
-  }
-  if (error.empty())
-  {
-    // The array chosen with SetInputArrayToProcess (the lookup is vtkAlgorithm's, protected).
-    int association = vtkDataObject::FIELD_ASSOCIATION_POINTS;
-    vtkAbstractArray* density = this->GetInputAbstractArrayToProcess(0, input, association);
-    error = ReadDensity(this->GetInputArrayInformation(0), density, association, input, domain,
-      perPoint, perTriangle);
+    error = this->ReadInput(input, read);
   }
   if (!error.empty())
   {
     vtkErrorMacro(<< error);
     return 0;
   }
+  const otparam::CompactedMesh& domain = read.domain;
+  const std::vector<double>&perPoint = read.perPoint, &perTriangle = read.perTriangle;
 
-  if (sphere)
+  if (read.sphere)
   {
     otparam::SphereSamplingStage stage = otparam::runSphereSamplingStage(domain.mesh.points,
       domain.mesh.triangles, TriangleDensity(domain, perPoint, perTriangle), options);
@@ -296,7 +313,7 @@ int vtkAdaptiveDensitySampler::Execute(
   }
 
   otparam::SamplingStage stage =
-    otparam::runSamplingStage(points, domain.mesh.triangles, perPoint, perTriangle, options);
+    otparam::runSamplingStage(read.points, domain.mesh.triangles, perPoint, perTriangle, options);
   AddUnreferencedNote(domain, stage.status);
   if (stage.zeroMassSamples > 0)
   {

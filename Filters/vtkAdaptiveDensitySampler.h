@@ -78,6 +78,8 @@
 #include "OTParamFiltersModule.h" // for export macro
 #include "vtkOTParamAlgorithm.h"
 
+#include <string> // for ReadInput
+
 class OTPARAMFILTERS_EXPORT vtkAdaptiveDensitySampler : public vtkOTParamAlgorithm
 {
 public:
@@ -161,6 +163,10 @@ protected:
   int SizeRule = SQRT_DENSITY;
 
 private:
+  // The domain and density read and checked from the input (defined in the .cxx).
+  struct Input;
+  std::string ReadInput(vtkPolyData* input, Input& read);
+
   vtkAdaptiveDensitySampler(const vtkAdaptiveDensitySampler&) = delete;
   void operator=(const vtkAdaptiveDensitySampler&) = delete;
 };
