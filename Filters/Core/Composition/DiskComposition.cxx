@@ -83,13 +83,83 @@ double measuredMeanAbsLogAreaRatio(const SurfaceMesh& surface, const std::vector
   }
   const std::vector<Triangle> triangles(
     surface.triangles.begin(), surface.triangles.begin() + static_cast<long>(measured));
-  std::vector<double> fraction(surfaceFraction.begin(), surfaceFraction.begin() + static_cast<long>(measured));
+  std::vector<double> fraction(
+    surfaceFraction.begin(), surfaceFraction.begin() + static_cast<long>(measured));
   const double total = std::accumulate(fraction.begin(), fraction.end(), 0.0);
   for (double& f : fraction)
   {
     f /= total;
   }
   return meanAbsLogAreaRatio(triangles, uv, fraction);
+}
+
+std::string checkCompositionInputs(const SurfaceMesh& surface, const std::vector<Vec2>& conformalUv,
+  const std::vector<Vec2>& samples, const std::vector<Vec2>& sampleImages)
+{
+  if (conformalUv.size() != surface.points.size())
+  {
+    return "the conformal image has " + std::to_string(conformalUv.size()) +
+      " points but the surface has " + std::to_string(surface.points.size());
+  }
+  if (samples.size() < 3 || samples.size() != sampleImages.size())
+  {
+    return "the transport needs at least 3 samples with one image each (got " +
+      std::to_string(samples.size()) + " samples and " + std::to_string(sampleImages.size()) +
+      " images)";
+  }
+  return {};
+}
+
+// Step 1: every point's conformal image through the samples' interpolant, the boundary's
+// pushed onto the circle. False when `report` asks to abort.
+template <class Report>
+bool interpolate(const std::vector<Vec2>& conformalUv, const std::vector<int>& boundaryLoop,
+  const std::vector<Vec2>& samples, const std::vector<Vec2>& sampleImages, const Report& report,
+  CompositionResult& result)
+{
+  SampleInterpolant interpolant(samples, sampleImages);
+  std::tie(result.flippedSampleTriangles, result.flippedSampleTrianglesAfterUntangling) =
+    interpolant.untangleImages();
+  result.interpolatedUv.resize(conformalUv.size());
+  for (size_t v = 0; v < conformalUv.size(); ++v)
+  {
+    // An abort is honoured every 2^18 points (~0.1 s).
+    if ((v & 0x3ffff) == 0x3ffff && !report(0.2 * v / conformalUv.size()))
+    {
+      return false;
+    }
+    bool outside = false;
+    result.interpolatedUv[v] = interpolant(conformalUv[v], outside);
+    result.outsideSampleHull += outside;
+  }
+  for (int v : boundaryLoop)
+  {
+    result.interpolatedUv[v] = normalized(result.interpolatedUv[v]);
+  }
+  return true;
+}
+
+// Step 3: the area correction of result.uv, and its figure. False when `report` asks to abort.
+template <class Report>
+bool correct(const SurfaceMesh& surface, const std::vector<int>& boundaryLoop,
+  const VertexStars& stars, const std::vector<double>& surfaceFraction,
+  const CompositionOptions& options, const Report& report, CompositionResult& result)
+{
+  AreaCorrection correction(surface, boundaryLoop, stars, surfaceFraction);
+  if (!correctAreas(
+        correction, result.uv, options,
+        [&](const std::vector<Vec2>& uv)
+        { return meanAbsLogAreaRatio(surface.triangles, uv, surfaceFraction); },
+        report, result.correctionSweeps, result.meanAbsLogAreaRatio))
+  {
+    return false;
+  }
+  if (options.measuredTriangles > 0) // else the correction's own last mean is the figure
+  {
+    result.meanAbsLogAreaRatio =
+      measuredMeanAbsLogAreaRatio(surface, result.uv, surfaceFraction, options.measuredTriangles);
+  }
+  return true;
 }
 } // namespace
 
@@ -99,17 +169,9 @@ CompositionResult composeWithInverseTransport(const SurfaceMesh& surface,
   const CompositionOptions& options)
 {
   CompositionResult result;
-  if (conformalUv.size() != surface.points.size())
+  result.status.error = checkCompositionInputs(surface, conformalUv, samples, sampleImages);
+  if (!result.status.error.empty())
   {
-    result.status.error = "the conformal image has " + std::to_string(conformalUv.size()) +
-      " points but the surface has " + std::to_string(surface.points.size());
-    return result;
-  }
-  if (samples.size() < 3 || samples.size() != sampleImages.size())
-  {
-    result.status.error = "the transport needs at least 3 samples with one image each (got " +
-      std::to_string(samples.size()) + " samples and " + std::to_string(sampleImages.size()) +
-      " images)";
     return result;
   }
   auto report = [&](double fraction)
@@ -122,24 +184,9 @@ CompositionResult composeWithInverseTransport(const SurfaceMesh& surface,
   };
 
   auto start = Clock::now();
-  SampleInterpolant interpolant(samples, sampleImages);
-  std::tie(result.flippedSampleTriangles, result.flippedSampleTrianglesAfterUntangling) =
-    interpolant.untangleImages();
-  result.interpolatedUv.resize(conformalUv.size());
-  for (size_t v = 0; v < conformalUv.size(); ++v)
+  if (!interpolate(conformalUv, boundaryLoop, samples, sampleImages, report, result))
   {
-    // An abort is honoured every 2^18 points (~0.1 s).
-    if ((v & 0x3ffff) == 0x3ffff && !report(0.2 * v / conformalUv.size()))
-    {
-      return result;
-    }
-    bool outside = false;
-    result.interpolatedUv[v] = interpolant(conformalUv[v], outside);
-    result.outsideSampleHull += outside;
-  }
-  for (int v : boundaryLoop)
-  {
-    result.interpolatedUv[v] = normalized(result.interpolatedUv[v]);
+    return result;
   }
   result.secondsInterpolation = seconds(start);
   if (!report(0.2))
@@ -147,6 +194,7 @@ CompositionResult composeWithInverseTransport(const SurfaceMesh& surface,
     return result;
   }
 
+  // Step 2: untangling.
   start = Clock::now();
   const VertexStars stars(surface.points.size(), surface.triangles);
   result.uv = result.interpolatedUv;
@@ -168,23 +216,11 @@ CompositionResult composeWithInverseTransport(const SurfaceMesh& surface,
   }
 
   start = Clock::now();
-  if (options.correctAreas)
+  if (options.correctAreas &&
+    !correct(surface, boundaryLoop, stars, surfaceFraction, options, report, result))
   {
-    AreaCorrection correction(surface, boundaryLoop, stars, surfaceFraction);
-    if (!correctAreas(
-          correction, result.uv, options,
-          [&](const std::vector<Vec2>& uv)
-          { return meanAbsLogAreaRatio(surface.triangles, uv, surfaceFraction); },
-          report, result.correctionSweeps, result.meanAbsLogAreaRatio))
-    {
-      result.uv.clear(); // an aborted run has no map
-      return result;
-    }
-    if (options.measuredTriangles > 0) // else the correction's own last mean is the figure
-    {
-      result.meanAbsLogAreaRatio =
-        measuredMeanAbsLogAreaRatio(surface, result.uv, surfaceFraction, options.measuredTriangles);
-    }
+    result.uv.clear(); // an aborted run has no map
+    return result;
   }
   result.secondsCorrection = seconds(start);
   result.flippedTriangles =
