@@ -265,15 +265,15 @@ double sphereMeanAbsLogAreaRatio(
   return mean;
 }
 
-SphereCompositionResult composeOnSphere(const SurfaceMesh& surface,
-  const std::vector<Vec3>& conformal, const std::vector<Vec3>& samples,
-  const std::vector<Triangle>& sampleTriangles, const std::vector<Vec3>& sampleImages,
-  const CompositionOptions& options)
+namespace
 {
-  auto report = [&options](double fraction)
-  { return !options.progress || options.progress(fraction); };
-  SphereCompositionResult result;
-  auto t0 = Clock::now();
+// Step 1: every point's conformal image through the samples' spherical interpolant. False when
+// `report` asks to abort or a point lies in no sample triangle (result.status says which).
+template <class Report>
+bool interpolateOnSphere(const std::vector<Vec3>& conformal, const std::vector<Vec3>& samples,
+  const std::vector<Triangle>& sampleTriangles, const std::vector<Vec3>& sampleImages,
+  const Report& report, SphereCompositionResult& result)
+{
   SphericalLocator locator(samples, sampleTriangles);
   const size_t n = conformal.size();
   result.interpolated.resize(n);
@@ -283,7 +283,7 @@ SphereCompositionResult composeOnSphere(const SurfaceMesh& surface,
     if ((v & 0x3ffff) == 0x3ffff && !report(0.2 * v / n))
     {
       result.status.aborted = true;
-      return result;
+      return false;
     }
     std::array<double, 3> w{};
     const int t = locator.locate(conformal[v], w);
@@ -291,11 +291,52 @@ SphereCompositionResult composeOnSphere(const SurfaceMesh& surface,
     {
       result.status.error = "a mesh point's conformal image lies in no triangle of the samples "
                             "(the samples do not cover the sphere)";
-      return result;
+      return false;
     }
     const Triangle& tri = sampleTriangles[t];
     result.interpolated[v] = normalized(
       w[0] * sampleImages[tri[0]] + w[1] * sampleImages[tri[1]] + w[2] * sampleImages[tri[2]]);
+  }
+  return true;
+}
+
+// Step 3: the area correction of result.sphere, and its figure. False when `report` asks to
+// abort.
+template <class Report>
+bool correctOnSphere(const SurfaceMesh& surface, const composition::VertexStars& stars,
+  const CompositionOptions& options, const Report& report, SphereCompositionResult& result)
+{
+  const std::vector<double> surfaceFraction = composition::surfaceAreaFractions(surface);
+  composition::AreaCorrectionOn<composition::SphereGeometry> correction(
+    surface, {}, stars, surfaceFraction);
+  if (!composition::correctAreas(
+        correction, result.sphere, options,
+        [&](const std::vector<Vec3>& sphere) { return sphereMeanAbsLogAreaRatio(surface, sphere); },
+        report, result.correctionSweeps, result.meanAbsLogAreaRatio))
+  {
+    return false;
+  }
+  if (options.measuredTriangles > 0) // else the correction's own last mean is the figure
+  {
+    result.meanAbsLogAreaRatio =
+      sphereMeanAbsLogAreaRatio(surface, result.sphere, options.measuredTriangles);
+  }
+  return true;
+}
+} // namespace
+
+SphereCompositionResult composeOnSphere(const SurfaceMesh& surface,
+  const std::vector<Vec3>& conformal, const std::vector<Vec3>& samples,
+  const std::vector<Triangle>& sampleTriangles, const std::vector<Vec3>& sampleImages,
+  const CompositionOptions& options)
+{
+  auto report = [&options](double fraction)
+  { return !options.progress || options.progress(fraction); };
+  SphereCompositionResult result;
+  auto t0 = Clock::now();
+  if (!interpolateOnSphere(conformal, samples, sampleTriangles, sampleImages, report, result))
+  {
+    return result;
   }
   result.secondsInterpolation = secondsSince(t0);
   if (!report(0.2))
@@ -306,9 +347,10 @@ SphereCompositionResult composeOnSphere(const SurfaceMesh& surface,
   result.flippedAfterInterpolation =
     static_cast<std::int64_t>(flippedOnSphere(surface, result.interpolated).size());
 
+  // Step 2: untangling.
   t0 = Clock::now();
   result.sphere = result.interpolated;
-  const composition::VertexStars stars(n, surface.triangles);
+  const composition::VertexStars stars(conformal.size(), surface.triangles);
   result.untangledVertices = untangleOnSphere(surface, stars, result.sphere);
   result.secondsUntangling = secondsSince(t0);
   // As on the disk: the untangled map before the correction.
@@ -324,25 +366,12 @@ SphereCompositionResult composeOnSphere(const SurfaceMesh& surface,
 
   t0 = Clock::now();
   // Only an untangled map is corrected: the correction keeps every triangle positive.
-  if (options.correctAreas && flippedOnSphere(surface, result.sphere).empty())
+  if (options.correctAreas && flippedOnSphere(surface, result.sphere).empty() &&
+    !correctOnSphere(surface, stars, options, report, result))
   {
-    const std::vector<double> surfaceFraction = composition::surfaceAreaFractions(surface);
-    composition::AreaCorrectionOn<composition::SphereGeometry> correction(
-      surface, {}, stars, surfaceFraction);
-    if (!composition::correctAreas(
-          correction, result.sphere, options,
-          [&](const std::vector<Vec3>& sphere) { return sphereMeanAbsLogAreaRatio(surface, sphere); },
-          report, result.correctionSweeps, result.meanAbsLogAreaRatio))
-    {
-      result.sphere.clear(); // an aborted run has no map
-      result.status.aborted = true;
-      return result;
-    }
-    if (options.measuredTriangles > 0) // else the correction's own last mean is the figure
-    {
-      result.meanAbsLogAreaRatio =
-        sphereMeanAbsLogAreaRatio(surface, result.sphere, options.measuredTriangles);
-    }
+    result.sphere.clear(); // an aborted run has no map
+    result.status.aborted = true;
+    return result;
   }
   result.secondsCorrection = secondsSince(t0);
   result.flippedTriangles =
