@@ -36,6 +36,13 @@ struct PowerDiagram::Triangulation
   };
   Flips reweightByFlips(const std::vector<Vec2>& diracs, const std::vector<Height>& heights,
     bool stopAtFirstHidden, std::vector<std::pair<int, Triangle>>& hidden);
+  // reweightByFlips' steps: the vertices whose weight changed, the edges that can have turned
+  // non-regular, and Lawson's flips from them.
+  std::vector<Regular::Vertex_handle> setWeights(
+    const std::vector<Vec2>& diracs, const std::vector<Height>& heights);
+  std::vector<Regular::Edge> edgesToCheck(const std::vector<Regular::Vertex_handle>& changed);
+  Flips flip(std::vector<Regular::Edge>& stack, bool stopAtFirstHidden,
+    std::vector<std::pair<int, Triangle>>& hidden);
 
   Regular rt;
   // Settled: every edge is regular under the vertices' weights, except perhaps those listed
@@ -112,6 +119,13 @@ PowerDiagram::Triangulation::Flips PowerDiagram::Triangulation::reweightByFlips(
   {
     return Flips::Failed;
   }
+  std::vector<Regular::Edge> stack = this->edgesToCheck(this->setWeights(diracs, heights));
+  return this->flip(stack, stopAtFirstHidden, hidden);
+}
+
+std::vector<Regular::Vertex_handle> PowerDiagram::Triangulation::setWeights(
+  const std::vector<Vec2>& diracs, const std::vector<Height>& heights)
+{
   std::vector<Regular::Vertex_handle> changed;
   for (auto v = rt.finite_vertices_begin(); v != rt.finite_vertices_end(); ++v)
   {
@@ -123,6 +137,12 @@ PowerDiagram::Triangulation::Flips PowerDiagram::Triangulation::reweightByFlips(
       changed.push_back(v);
     }
   }
+  return changed;
+}
+
+std::vector<Regular::Edge> PowerDiagram::Triangulation::edgesToCheck(
+  const std::vector<Regular::Vertex_handle>& changed)
+{
   std::vector<Regular::Edge> stack;
   if (settled && changed.size() < rt.number_of_vertices() / 8)
   {
@@ -173,6 +193,15 @@ PowerDiagram::Triangulation::Flips PowerDiagram::Triangulation::reweightByFlips(
       }
     }
   }
+  return stack;
+}
+
+// Lawson's flips from the edges on `stack`; a flip that would hide a Dirac is not done (see
+// reweightByFlips).
+PowerDiagram::Triangulation::Flips PowerDiagram::Triangulation::flip(
+  std::vector<Regular::Edge>& stack, bool stopAtFirstHidden,
+  std::vector<std::pair<int, Triangle>>& hidden)
+{
   settled = false;
   unsettled.clear();
   const auto orientation = rt.geom_traits().orientation_2_object();
