@@ -1143,6 +1143,41 @@ std::vector<Vec2> interiorSamples(const CDT& cdt, const std::vector<std::vector<
   return interior;
 }
 
+// The boundary loops sampled at spacing epsilon / grading, at most `limit` samples in all.
+// Returns "" or what is wrong.
+std::string sampleBoundaryLoops(const DensityField& field, const SamplerOptions& options,
+  const std::function<double(Vec2)>& grading, double epsilon, long long limit,
+  std::vector<std::vector<Vec2>>& boundary)
+{
+  long long boundarySamples = 0;
+  for (const auto& loop : field.boundaryLoops())
+  {
+    boundary.emplace_back();
+    if (!sampleLoop(loop, grading, epsilon, limit - boundarySamples, boundary.back()))
+    {
+      std::ostringstream text;
+      text << "the domain's boundary alone needs more than " << limit
+           << " samples for a run aiming at " << options.numberOfSamples
+           << ": it is too long or too fine for so few samples (a spike, a sliver); check the "
+              "domain's geometry"
+           << (limit == options.maximumNumberOfSamples ? " or raise MaximumNumberOfSamples" : "");
+      return text.str();
+    }
+    boundarySamples += static_cast<long long>(boundary.back().size());
+  }
+  return {};
+}
+
+std::size_t sampleCount(const std::vector<std::vector<Vec2>>& loops)
+{
+  std::size_t count = 0;
+  for (const auto& loop : loops)
+  {
+    count += loop.size();
+  }
+  return count;
+}
+
 void sampleSupport(
   const DensityField& field, const SamplerOptions& options, double integral, SamplerResult& result)
 {
@@ -1170,23 +1205,10 @@ void sampleSupport(
       cdt = std::make_unique<CDT>();
       const long long limit = refinementLimit(options, target);
       std::vector<std::vector<Vec2>> boundary;
-      long long boundarySamples = 0;
-      for (const auto& loop : field.boundaryLoops())
+      result.status.error = sampleBoundaryLoops(field, options, grading, epsilon, limit, boundary);
+      if (!result.status.error.empty())
       {
-        boundary.emplace_back();
-        if (!sampleLoop(loop, grading, epsilon, limit - boundarySamples, boundary.back()))
-        {
-          std::ostringstream text;
-          text << "the domain's boundary alone needs more than " << limit
-               << " samples for a run aiming at " << static_cast<long long>(target)
-               << ": it is too long or too fine for so few samples (a spike, a sliver); check "
-                  "the domain's geometry"
-               << (limit == options.maximumNumberOfSamples ? " or raise MaximumNumberOfSamples"
-                                                           : "");
-          result.status.error = text.str();
-          return -1.0;
-        }
-        boundarySamples += static_cast<long long>(boundary.back().size());
+        return -1.0;
       }
       insertLoops(*cdt, boundary);
       if (!refineSupport(
@@ -1196,15 +1218,7 @@ void sampleSupport(
       }
       refinedLoops = boundaryLoopsOf(*cdt);
       loops = thinBoundary(refinedLoops, field);
-      size_t dropped = 0;
-      for (const auto& loop : refinedLoops)
-      {
-        dropped += loop.size();
-      }
-      for (const auto& loop : loops)
-      {
-        dropped -= loop.size();
-      }
+      const std::size_t dropped = sampleCount(refinedLoops) - sampleCount(loops);
       return static_cast<double>(verticesInDomain(*cdt) - dropped);
     },
     result);
