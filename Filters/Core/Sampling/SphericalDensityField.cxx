@@ -34,37 +34,40 @@ std::unique_ptr<SphericalDensityField> SphericalDensityField::create(
 }
 
 //------------------------------------------------------------------------------
-std::string SphericalDensityField::checkAndBuild()
+namespace
 {
-  std::ostringstream msg;
-  const size_t n = this->Points.size(), m = this->Triangles.size();
-  if (m < 4 || this->PerTriangle.size() != m)
+using EdgeMap = std::unordered_map<long long, std::pair<int, int>>; // (from, to) -> (triangle, k)
+
+std::string checkPointsOnSphere(std::vector<Vec3>& points)
+{
+  for (size_t i = 0; i < points.size(); ++i)
   {
-    msg << "The spherical density needs a closed mesh of at least 4 triangles and one density "
-           "value per triangle; got "
-        << m << " triangles and " << this->PerTriangle.size() << " values.";
-    return msg.str();
-  }
-  for (size_t i = 0; i < n; ++i)
-  {
-    const double r = norm(this->Points[i]);
+    const double r = norm(points[i]);
     if (!std::isfinite(r) || std::abs(r - 1.0) > 1e-9)
     {
+      std::ostringstream msg;
       msg << "Point " << i << " of the spherical density is not on the unit sphere (|p| = " << r
           << ").";
       return msg.str();
     }
-    this->Points[i] = normalized(this->Points[i]);
+    points[i] = normalized(points[i]);
   }
-  for (size_t t = 0; t < m; ++t)
+  return {};
+}
+
+std::string checkTriangles(
+  const std::vector<Triangle>& triangles, const std::vector<double>& perTriangle, size_t n)
+{
+  std::ostringstream msg;
+  for (size_t t = 0; t < triangles.size(); ++t)
   {
-    const double g = this->PerTriangle[t];
+    const double g = perTriangle[t];
     if (!std::isfinite(g) || !(g > 0.0))
     {
       msg << "The density of triangle " << t << " must be positive and finite; got " << g << ".";
       return msg.str();
     }
-    const Triangle& tri = this->Triangles[t];
+    const Triangle& tri = triangles[t];
     for (int k = 0; k < 3; ++k)
     {
       if (tri[k] < 0 || static_cast<size_t>(tri[k]) >= n || tri[k] == tri[(k + 1) % 3])
@@ -74,25 +77,70 @@ std::string SphericalDensityField::checkAndBuild()
       }
     }
   }
-  // Neighbours: each directed edge once, its reverse once (a closed, consistently oriented
-  // surface).
-  std::unordered_map<long long, std::pair<int, int>> edges; // (from, to) -> (triangle, k)
-  edges.reserve(3 * m);
-  const auto key = [n](int a, int b) { return static_cast<long long>(a) * n + b; };
-  for (size_t t = 0; t < m; ++t)
+  return {};
+}
+
+long long edgeKey(size_t n, int a, int b)
+{
+  return static_cast<long long>(a) * static_cast<long long>(n) + b;
+}
+
+// Each directed edge once (its reverse is looked up by the caller): a closed, consistently
+// oriented surface.
+std::string directedEdges(const std::vector<Triangle>& triangles, size_t n, EdgeMap& edges)
+{
+  edges.reserve(3 * triangles.size());
+  for (size_t t = 0; t < triangles.size(); ++t)
   {
     for (int k = 0; k < 3; ++k)
     {
-      const Triangle& tri = this->Triangles[t];
-      if (!edges.emplace(key(tri[(k + 1) % 3], tri[(k + 2) % 3]), std::make_pair(int(t), k)).second)
+      const Triangle& tri = triangles[t];
+      const int a = tri[(k + 1) % 3], b = tri[(k + 2) % 3];
+      if (!edges.emplace(edgeKey(n, a, b), std::make_pair(int(t), k)).second)
       {
-        msg << "Edge " << tri[(k + 1) % 3] << "-" << tri[(k + 2) % 3] << " of triangle " << t
+        std::ostringstream msg;
+        msg << "Edge " << a << "-" << b << " of triangle " << t
             << " is used twice in the same direction: the density mesh is not a consistently "
                "oriented closed surface.";
         return msg.str();
       }
     }
   }
+  return {};
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+std::string SphericalDensityField::checkAndBuild()
+{
+  const size_t n = this->Points.size(), m = this->Triangles.size();
+  if (m < 4 || this->PerTriangle.size() != m)
+  {
+    std::ostringstream msg;
+    msg << "The spherical density needs a closed mesh of at least 4 triangles and one density "
+           "value per triangle; got "
+        << m << " triangles and " << this->PerTriangle.size() << " values.";
+    return msg.str();
+  }
+  EdgeMap edges;
+  std::string error = checkPointsOnSphere(this->Points);
+  error = error.empty() ? checkTriangles(this->Triangles, this->PerTriangle, n) : error;
+  error = error.empty() ? directedEdges(this->Triangles, n, edges) : error;
+  error = error.empty() ? this->buildNeighboursAndAreas(edges) : error;
+  if (error.empty())
+  {
+    this->buildStartTable();
+  }
+  return error;
+}
+
+//------------------------------------------------------------------------------
+// Each edge's neighbour across it and great-circle normal, each triangle's spherical area, the
+// density's integral; what is wrong when the triangles do not tile the sphere.
+std::string SphericalDensityField::buildNeighboursAndAreas(const EdgeMap& edges)
+{
+  std::ostringstream msg;
+  const size_t n = this->Points.size(), m = this->Triangles.size();
   this->Neighbor.assign(m, { -1, -1, -1 });
   this->EdgeNormal.resize(m);
   this->Area.resize(m);
@@ -104,7 +152,7 @@ std::string SphericalDensityField::checkAndBuild()
     for (int k = 0; k < 3; ++k)
     {
       const int a = tri[(k + 1) % 3], b = tri[(k + 2) % 3];
-      const auto it = edges.find(key(b, a));
+      const auto it = edges.find(edgeKey(n, b, a));
       if (it == edges.end())
       {
         msg << "Edge " << a << "-" << b << " of triangle " << t
@@ -131,7 +179,6 @@ std::string SphericalDensityField::checkAndBuild()
         << " instead of 4 pi: they overlap or leave gaps.";
     return msg.str();
   }
-  this->buildStartTable();
   return {};
 }
 

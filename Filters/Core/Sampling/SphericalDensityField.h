@@ -9,6 +9,8 @@
 
 #include <memory>
 #include <string>
+#include <unordered_map>
+#include <utility>
 #include <vector>
 
 namespace otparam
@@ -56,6 +58,8 @@ public:
 private:
   SphericalDensityField() = default;
   std::string checkAndBuild();
+  std::string buildNeighboursAndAreas(
+    const std::unordered_map<long long, std::pair<int, int>>& directedEdges);
   int walk(Vec3 x, int start, int maximumSteps) const;
   bool contains(int t, Vec3 x) const;
   int tableCell(Vec3 x) const;
