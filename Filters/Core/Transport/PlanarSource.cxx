@@ -733,6 +733,104 @@ std::unique_ptr<SourceMeasure> makeUnitDiskSource()
   return std::make_unique<UnitDiskSource>();
 }
 
+namespace
+{
+// The triangles' point ids and coordinates checked, each triangle stored counter-clockwise
+// (orientation does not matter for a planar domain), the points used marked; "" or what is
+// wrong. `area` gets the triangles' total area.
+std::string checkAndOrient(TriangulatedDomain& domain, std::vector<char>& used, double& area)
+{
+  const std::vector<Vec2>& points = domain.points;
+  used.assign(points.size(), 0);
+  area = 0.0;
+  for (size_t t = 0; t < domain.triangles.size(); ++t)
+  {
+    Triangle& tri = domain.triangles[t];
+    for (int k = 0; k < 3; ++k)
+    {
+      if (tri[k] < 0 || static_cast<size_t>(tri[k]) >= points.size())
+      {
+        return "source triangle " + std::to_string(t) + " refers to a point that does not exist";
+      }
+      const Vec2 p = points[tri[k]];
+      if (!std::isfinite(p.x) || !std::isfinite(p.y))
+      {
+        return "source point " + std::to_string(tri[k]) + " has a non-finite coordinate";
+      }
+      used[tri[k]] = 1;
+    }
+    const Vec2 a = points[tri[0]], b = points[tri[1]], c = points[tri[2]];
+    double twice = cross(b - a, c - a);
+    if (twice < 0.0)
+    {
+      std::swap(tri[1], tri[2]);
+      twice = -twice;
+    }
+    if (!(twice > 0.0))
+    {
+      return "source triangle " + std::to_string(t) + " has zero area";
+    }
+    area += 0.5 * twice;
+  }
+  return {};
+}
+
+// Relative to the first corner: absolute coordinates lose the area of a small domain far from
+// the origin to cancellation.
+double polygonArea(const std::vector<Vec2>& polygon)
+{
+  double twice = 0.0;
+  for (size_t k = 0; k < polygon.size(); ++k)
+  {
+    twice += cross(polygon[k] - polygon[0], polygon[(k + 1) % polygon.size()] - polygon[0]);
+  }
+  return 0.5 * twice;
+}
+
+// The hull's bounding box, and the inner disk: centred at the hull's centroid, radius = the
+// distance to the nearest hull edge.
+void setBoundsAndInnerDisk(TriangulatedDomain& domain)
+{
+  const std::vector<Vec2>& hull = domain.hull;
+  domain.lo = domain.hi = hull[0];
+  Vec2 c = { 0.0, 0.0 };
+  for (const Vec2& p : hull)
+  {
+    domain.lo = { std::min(domain.lo.x, p.x), std::min(domain.lo.y, p.y) };
+    domain.hi = { std::max(domain.hi.x, p.x), std::max(domain.hi.y, p.y) };
+    c = c + p;
+  }
+  c = (1.0 / hull.size()) * c;
+  double r = std::numeric_limits<double>::max();
+  for (size_t k = 0; k < hull.size(); ++k)
+  {
+    const Vec2 a = hull[k], b = hull[(k + 1) % hull.size()];
+    r = std::min(r, cross(b - a, c - a) / norm(b - a));
+  }
+  domain.innerCenter = c;
+  domain.innerRadius = r;
+}
+
+BoxTree triangleBoxTree(const TriangulatedDomain& domain)
+{
+  std::vector<BoxTree::Item> boxes(domain.triangles.size());
+  for (size_t t = 0; t < domain.triangles.size(); ++t)
+  {
+    const Triangle& tri = domain.triangles[t];
+    BoxTree::Item& box = boxes[t];
+    box.lo = box.hi = domain.points[tri[0]];
+    for (int k = 1; k < 3; ++k)
+    {
+      const Vec2 p = domain.points[tri[k]];
+      box.lo = { std::min(box.lo.x, p.x), std::min(box.lo.y, p.y) };
+      box.hi = { std::max(box.hi.x, p.x), std::max(box.hi.y, p.y) };
+    }
+    box.value = 0.0;
+  }
+  return BoxTree(std::move(boxes));
+}
+} // namespace
+
 std::unique_ptr<SourceMeasure> makeTriangulatedSource(const std::vector<Vec2>& points,
   const std::vector<Triangle>& triangles, const std::vector<double>& density, std::string& error,
   bool allowZeroDensity, bool allowNonConvex, const std::vector<Vec2>* hullCandidates)
@@ -751,48 +849,18 @@ std::unique_ptr<SourceMeasure> makeTriangulatedSource(const std::vector<Vec2>& p
   auto domain = std::make_shared<TriangulatedDomain>();
   domain->points = points;
   domain->triangles = triangles;
-  std::vector<char> used(points.size(), 0);
+  std::vector<char> used;
   double area = 0.0;
-  for (size_t t = 0; t < triangles.size(); ++t)
+  error = checkAndOrient(*domain, used, area);
+  if (!error.empty())
   {
-    Triangle tri = triangles[t];
-    for (int k = 0; k < 3; ++k)
-    {
-      if (tri[k] < 0 || static_cast<size_t>(tri[k]) >= points.size())
-      {
-        error = "source triangle " + std::to_string(t) + " refers to a point that does not exist";
-        return nullptr;
-      }
-      const Vec2 p = points[tri[k]];
-      if (!std::isfinite(p.x) || !std::isfinite(p.y))
-      {
-        error = "source point " + std::to_string(tri[k]) + " has a non-finite coordinate";
-        return nullptr;
-      }
-      used[tri[k]] = 1;
-    }
-    const Vec2 a = points[tri[0]], b = points[tri[1]], c = points[tri[2]];
-    double twice = cross(b - a, c - a);
-    if (twice < 0.0)
-    {
-      // Orientation does not matter for a planar domain: store counter-clockwise.
-      std::swap(tri[1], tri[2]);
-      domain->triangles[t] = tri;
-      twice = -twice;
-    }
-    if (!(twice > 0.0))
-    {
-      error = "source triangle " + std::to_string(t) + " has zero area";
-      return nullptr;
-    }
-    area += 0.5 * twice;
+    return nullptr;
   }
-  auto& hull = domain->hull;
   if (hullCandidates)
   {
     // The sampler's piecewise-constant densities give every triangle its own three points:
     // the hull of all of them took 0.26 s at 6.6M points.
-    hull = convexHull(*hullCandidates);
+    domain->hull = convexHull(*hullCandidates);
   }
   else
   {
@@ -804,16 +872,9 @@ std::unique_ptr<SourceMeasure> makeTriangulatedSource(const std::vector<Vec2>& p
         usedPoints.push_back(points[i]);
       }
     }
-    hull = convexHull(usedPoints);
+    domain->hull = convexHull(usedPoints);
   }
-  double hullArea = 0.0;
-  for (size_t k = 0; k < hull.size(); ++k)
-  {
-    // Relative to the first corner: absolute coordinates lose the area of a small domain far
-    // from the origin to cancellation.
-    hullArea += cross(hull[k] - hull[0], hull[(k + 1) % hull.size()] - hull[0]);
-  }
-  hullArea *= 0.5;
+  const double hullArea = polygonArea(domain->hull);
   if (!allowNonConvex && std::abs(hullArea - area) > 1e-9 * hullArea)
   {
     std::ostringstream s;
@@ -822,42 +883,8 @@ std::unique_ptr<SourceMeasure> makeTriangulatedSource(const std::vector<Vec2>& p
     error = s.str();
     return nullptr;
   }
-  domain->lo = domain->hi = hull[0];
-  for (const Vec2& p : hull)
-  {
-    domain->lo = { std::min(domain->lo.x, p.x), std::min(domain->lo.y, p.y) };
-    domain->hi = { std::max(domain->hi.x, p.x), std::max(domain->hi.y, p.y) };
-  }
-  // Inner disk: centred at the hull's centroid, radius = distance to the nearest hull edge.
-  Vec2 c = { 0.0, 0.0 };
-  for (const Vec2& p : hull)
-  {
-    c = c + p;
-  }
-  c = (1.0 / hull.size()) * c;
-  double r = std::numeric_limits<double>::max();
-  for (size_t k = 0; k < hull.size(); ++k)
-  {
-    const Vec2 a = hull[k], b = hull[(k + 1) % hull.size()];
-    r = std::min(r, cross(b - a, c - a) / norm(b - a));
-  }
-  domain->innerCenter = c;
-  domain->innerRadius = r;
-  std::vector<BoxTree::Item> boxes(triangles.size());
-  for (size_t t = 0; t < triangles.size(); ++t)
-  {
-    const Triangle& tri = domain->triangles[t];
-    BoxTree::Item& box = boxes[t];
-    box.lo = box.hi = points[tri[0]];
-    for (int k = 1; k < 3; ++k)
-    {
-      const Vec2 p = points[tri[k]];
-      box.lo = { std::min(box.lo.x, p.x), std::min(box.lo.y, p.y) };
-      box.hi = { std::max(box.hi.x, p.x), std::max(box.hi.y, p.y) };
-    }
-    box.value = 0.0;
-  }
-  domain->triangleBoxes = BoxTree(std::move(boxes));
+  setBoundsAndInnerDisk(*domain);
+  domain->triangleBoxes = triangleBoxTree(*domain);
   auto src = std::make_unique<TriangulatedSource>();
   src->domain = std::move(domain);
   src->density = density.empty() ? std::vector<double>(points.size(), 1.0) : density;
