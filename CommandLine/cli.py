@@ -70,9 +70,9 @@ def parse_arguments(argv):
                         help="a thorough area correction: lower area and angle distortion for "
                              "about twice the correction's time")
     parser.add_argument("--obj", action="store_true",
-                        help="also write <name>.obj with the texture coordinates (disk "
-                             "coordinates, or longitude/latitude on the sphere) for Blender, "
-                             "MeshLab, ...")
+                        help="also write <name>.obj with texture coordinates in [0, 1]^2 "
+                             "(the disk inscribed in the unit square, or longitude/latitude on "
+                             "the sphere) for Blender, MeshLab, ...")
     parser.add_argument("--timeout", type=float, default=3600.0, metavar="SECONDS",
                         help="give up a surface after this long, as a failed row (default "
                              "3600; 0: no limit)")
@@ -341,8 +341,29 @@ def write_outputs(mapped, path_stem, parameters_text, write_obj):
     if write_obj:
         from vtkmodules.vtkIOGeometry import vtkOBJWriter
         obj = vtkOBJWriter()
-        obj.SetInputData(mapped)
+        obj.SetInputData(with_unit_square_texture(mapped))
         write_atomically(obj, path_stem + ".obj")
+
+
+def with_unit_square_texture(mapped):
+    """The map with texture coordinates in [0, 1]^2, where Blender and MeshLab put an image (they
+    repeat it outside): the disk's (u, v) in [-1, 1]^2 become ((u + 1) / 2, (v + 1) / 2), the
+    disk inscribed in the image; the sphere's longitude / latitude already are. Points used by
+    no triangle (NaN) get (0, 0)."""
+    import numpy
+    from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
+    from vtkmodules.vtkCommonDataModel import vtkPolyData
+    tcoords = vtk_to_numpy(mapped.GetPointData().GetTCoords()).astype(float)
+    domain = mapped.GetFieldData().GetArray("Domain")
+    if domain is not None and domain.GetValue(0) == 1:
+        tcoords = 0.5 * (tcoords + 1.0)
+    tcoords = numpy.nan_to_num(tcoords, nan=0.0)
+    square = numpy_to_vtk(numpy.ascontiguousarray(tcoords), deep=True)
+    square.SetName("TextureCoordinates")
+    copy = vtkPolyData()
+    copy.ShallowCopy(mapped)  # its own point data (sharing the arrays): mapped keeps its tcoords
+    copy.GetPointData().SetTCoords(square)
+    return copy
 
 
 def write_atomically(writer, path):

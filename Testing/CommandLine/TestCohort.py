@@ -5,7 +5,8 @@ broken ones written here (a non-manifold fin, a closed torus of genus 1).
   messages, both ranks used, exit status 1.
 - The same with --resume: nothing is mapped again (every row resumed, no output rewritten).
 - One process (no mpiexec): the same .vtp outputs, array for array (timings aside).
-- --obj: the OBJ read back has the .vtp's points, triangles and texture coordinates.
+- --obj: the OBJ read back has the .vtp's points and triangles, and its texture coordinates
+  in [0, 1]^2 (the disk inscribed in the unit square, longitude/latitude on the sphere).
 - PLY, STL, legacy VTK and VTP inputs, named by a glob.
 - --timeout: a surface past it is a failed row naming the stage.
 - Usage errors: exit status 2 with a message.
@@ -154,21 +155,30 @@ for name in mapped:
     check(not different, f"{name}.vtp: one process and 2 MPI ranks agree bit for bit "
                          f"({different or 'identical'})")
 
-# ---- --obj: texture coordinates for Blender/MeshLab, read back.
-for name in ("face_dense_gpp_5k", "spot_closed_3k"):
+# ---- --obj: texture coordinates for Blender/MeshLab (in the unit square, where they put the
+# image), read back.
+for name, disk in (("face_dense_gpp_5k", True), ("spot_closed_3k", False)):
     vtp = read_vtp(os.path.join(out_mpi, name + ".vtp"))
     reader = vtkOTParamMeshReader()
     reader.SetFileName(os.path.join(out_mpi, name + ".obj"))
     reader.Update()
     obj = reader.GetOutput()
     tcoords = obj.GetPointData().GetTCoords()
+    map_tcoords = vtk_to_numpy(vtp.GetPointData().GetTCoords())
+    expected = 0.5 * (map_tcoords + 1.0) if disk else map_tcoords
     same = (obj.GetNumberOfPoints() == vtp.GetNumberOfPoints()
             and obj.GetNumberOfCells() == vtp.GetNumberOfCells() and tcoords is not None
-            and numpy.allclose(vtk_to_numpy(tcoords),
-                               vtk_to_numpy(vtp.GetPointData().GetTCoords()), rtol=0, atol=1e-12)
+            and numpy.allclose(vtk_to_numpy(tcoords), expected, rtol=0, atol=1e-12)
             and numpy.allclose(vtk_to_numpy(obj.GetPoints().GetData()),
                                vtk_to_numpy(vtp.GetPoints().GetData()), rtol=1e-12, atol=0))
-    check(same, f"{name}.obj: the points, triangles and texture coordinates of {name}.vtp")
+    check(same, f"{name}.obj: the points and triangles of {name}.vtp, its texture coordinates "
+                f"{'moved into the unit square' if disk else 'as they are'}")
+    uv = vtk_to_numpy(tcoords)
+    check(uv.min() >= 0.0 and uv.max() <= 1.0, f"{name}.obj: texture coordinates in [0, 1]^2")
+    if disk:
+        radius = numpy.hypot(uv[:, 0] - 0.5, uv[:, 1] - 0.5)
+        check(abs(radius.max() - 0.5) <= 1e-12,
+              f"{name}.obj: the disk inscribed in the unit square ({radius.max():.15f})")
 
 # ---- Other formats: the hemisphere written as PLY, STL (a soup: merged on reading), legacy VTK
 # and VTP maps as the OBJ does.
