@@ -50,6 +50,32 @@ int vtkAdaptiveDensitySampler::FillInputPortInformation(int, vtkInformation* inf
 
 namespace
 {
+// The message for a density array that is not there, with the other association's array of
+// that name if there is one.
+std::string MissingDensity(
+  vtkPolyData* input, const std::string& arrayName, const std::string& quotedName, int requested)
+{
+  const char* kind = requested == vtkDataObject::FIELD_ASSOCIATION_POINTS ? "point array"
+    : requested == vtkDataObject::FIELD_ASSOCIATION_CELLS                 ? "cell array"
+                                                                          : "point or cell array";
+  std::string hint;
+  if (!arrayName.empty() && requested == vtkDataObject::FIELD_ASSOCIATION_POINTS &&
+    input->GetCellData()->GetAbstractArray(arrayName.c_str()))
+  {
+    hint = " (there is a cell array of that name: select it with FIELD_ASSOCIATION_CELLS for a "
+           "density per triangle)";
+  }
+  else if (!arrayName.empty() && requested == vtkDataObject::FIELD_ASSOCIATION_CELLS &&
+    input->GetPointData()->GetAbstractArray(arrayName.c_str()))
+  {
+    hint = " (there is a point array of that name: select it with FIELD_ASSOCIATION_POINTS)";
+  }
+  return "The density array is missing: the input domain has no " + std::string(kind) + " " +
+    quotedName + hint +
+    "; choose the density with SetInputArrayToProcess (default: the point array "
+    "'AreaDensity').";
+}
+
 // The density array `densityAbstract` (found with `association`), per point of `domain` (the input
 // points used by triangles) or per triangle; "" or the message.
 std::string ReadDensity(vtkInformation* arrayInfo, vtkAbstractArray* densityAbstract,
@@ -77,26 +103,7 @@ std::string ReadDensity(vtkInformation* arrayInfo, vtkAbstractArray* densityAbst
     "'" + (arrayName.empty() ? std::string("(unnamed)") : arrayName) + "'";
   if (!densityAbstract)
   {
-    const char* kind = requested == vtkDataObject::FIELD_ASSOCIATION_POINTS ? "point array"
-      : requested == vtkDataObject::FIELD_ASSOCIATION_CELLS                 ? "cell array"
-                                                                            : "point or cell array";
-    std::string hint;
-    if (!arrayName.empty() && requested == vtkDataObject::FIELD_ASSOCIATION_POINTS &&
-      input->GetCellData()->GetAbstractArray(arrayName.c_str()))
-    {
-      hint = " (there is a cell array of that name: select it with FIELD_ASSOCIATION_CELLS for "
-             "a density per triangle)";
-    }
-    else if (!arrayName.empty() && requested == vtkDataObject::FIELD_ASSOCIATION_CELLS &&
-      input->GetPointData()->GetAbstractArray(arrayName.c_str()))
-    {
-      hint = " (there is a point array of that name: select it with FIELD_ASSOCIATION_POINTS)";
-    }
-    msg << "The density array is missing: the input domain has no " << kind << " " << quotedName
-        << hint
-        << "; choose the density with SetInputArrayToProcess (default: the point array "
-           "'AreaDensity').";
-    return msg.str();
+    return MissingDensity(input, arrayName, quotedName, requested);
   }
   const bool perPointArray = association == vtkDataObject::FIELD_ASSOCIATION_POINTS;
   const std::string description =
