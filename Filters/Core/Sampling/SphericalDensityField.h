@@ -42,6 +42,7 @@ public:
   {
     std::vector<int> stamp;
     std::vector<int> stack;
+    std::vector<Vec3> polygonNormals; // cross(a, b) of the polygon's edges: inside when >= 0
     int current = 0;
   };
   // Optionally also the integrals of g (gMass) and of 1 (area) in the same pass.
@@ -69,6 +70,7 @@ private:
   std::vector<Triangle> Triangles;
   std::vector<double> PerTriangle;
   std::vector<double> Area;
+  std::vector<Vec3> Moment;                    // of each whole triangle (its integral of x dA)
   std::vector<std::array<int, 3>> Neighbor;    // across the edge opposite vertex k
   std::vector<std::array<Vec3, 3>> EdgeNormal; // cross(a, b) of edge k: inside when >= 0
   std::vector<int> StartTable; // cube map: 6 faces x TableSize^2 cells -> a triangle near it
