@@ -62,9 +62,9 @@ inline Vec3 sphericalPolygonMoment(const std::vector<Vec3>& polygon)
 // The part of a convex spherical polygon where dot(normal, x) >= 0 (Sutherland-Hodgman with
 // great-circle arcs: an arc crosses the plane at the normalized positive combination of its
 // ends, which stays on the arc).
-inline std::vector<Vec3> clipByGreatCircle(const std::vector<Vec3>& polygon, Vec3 normal)
+inline void clipByGreatCircle(const std::vector<Vec3>& polygon, Vec3 normal, std::vector<Vec3>& out)
 {
-  std::vector<Vec3> out;
+  out.clear();
   const size_t n = polygon.size();
   for (size_t k = 0; k < n; ++k)
   {
@@ -80,6 +80,12 @@ inline std::vector<Vec3> clipByGreatCircle(const std::vector<Vec3>& polygon, Vec
       out.push_back(normalized((1.0 - t) * a + t * b));
     }
   }
+}
+
+inline std::vector<Vec3> clipByGreatCircle(const std::vector<Vec3>& polygon, Vec3 normal)
+{
+  std::vector<Vec3> out;
+  clipByGreatCircle(polygon, normal, out);
   return out;
 }
 

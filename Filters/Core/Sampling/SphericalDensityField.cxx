@@ -319,6 +319,32 @@ int SphericalDensityField::locate(Vec3 x, int hint) const
 }
 
 //------------------------------------------------------------------------------
+// The polygon clipped by triangle t's edges (0, 1), (1, 2), (2, 0) in that order, as
+// intersectSphericalPolygons does, into scratch.piece; an edge with the whole piece inside
+// leaves it as it is and is skipped (no copy). False when nothing is left.
+bool SphericalDensityField::clipToTriangle(
+  int t, const std::vector<Vec3>& polygon, Scratch& scratch) const
+{
+  scratch.piece.assign(polygon.begin(), polygon.end());
+  for (const int k : { 2, 0, 1 }) // EdgeNormal[t][k] is the edge opposite corner k
+  {
+    const Vec3 normal = this->EdgeNormal[t][k];
+    if (std::all_of(scratch.piece.begin(), scratch.piece.end(),
+          [&](const Vec3& v) { return dot(normal, v) >= 0.0; }))
+    {
+      continue;
+    }
+    clipByGreatCircle(scratch.piece, normal, scratch.clipped);
+    scratch.piece.swap(scratch.clipped);
+    if (scratch.piece.size() < 3)
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
 void SphericalDensityField::integrate(const std::vector<Vec3>& polygon, Vec3 inside, int& hint,
   double power, Scratch& scratch, double& mass, Vec3* moment, double* gMass, double* area) const
 {
@@ -378,15 +404,10 @@ void SphericalDensityField::integrate(const std::vector<Vec3>& polygon, Vec3 ins
         return dot(normal, this->Points[tri[0]]) >= 0.0 &&
           dot(normal, this->Points[tri[1]]) >= 0.0 && dot(normal, this->Points[tri[2]]) >= 0.0;
       });
-    std::vector<Vec3> piece;
-    if (!whole)
+    std::vector<Vec3>& piece = scratch.piece;
+    if (!whole && !this->clipToTriangle(t, polygon, scratch))
     {
-      piece = intersectSphericalPolygons(
-        polygon, { this->Points[tri[0]], this->Points[tri[1]], this->Points[tri[2]] });
-      if (piece.empty())
-      {
-        continue;
-      }
+      continue;
     }
     const double g = power == 1.0 ? this->PerTriangle[t] : std::pow(this->PerTriangle[t], power);
     const double pieceArea = whole ? this->Area[t] : sphericalPolygonArea(piece);

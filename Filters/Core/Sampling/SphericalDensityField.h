@@ -43,6 +43,7 @@ public:
     std::vector<int> stamp;
     std::vector<int> stack;
     std::vector<Vec3> polygonNormals; // cross(a, b) of the polygon's edges: inside when >= 0
+    std::vector<Vec3> piece, clipped;
     int current = 0;
   };
   // Optionally also the integrals of g (gMass) and of 1 (area) in the same pass.
@@ -63,6 +64,7 @@ private:
     const std::unordered_map<long long, std::pair<int, int>>& directedEdges);
   int walk(Vec3 x, int start, int maximumSteps) const;
   bool contains(int t, Vec3 x) const;
+  bool clipToTriangle(int t, const std::vector<Vec3>& polygon, Scratch& scratch) const;
   int tableCell(Vec3 x) const;
   void buildStartTable();
 
