@@ -80,6 +80,10 @@ struct SparseCholesky::Cholmod
 #endif
 
 SparseCholesky::SparseCholesky() = default;
+SparseCholesky::SparseCholesky(int cholmodFrom)
+  : CholmodFrom(cholmodFrom)
+{
+}
 SparseCholesky::~SparseCholesky() = default;
 
 namespace
@@ -103,7 +107,7 @@ bool SparseCholesky::compute(const SparseMatrix& lower, const std::function<bool
   this->Size = static_cast<int>(lower.rows());
   this->Leading = -1;
 #ifdef OTPARAM_HAVE_CHOLMOD
-  if (this->Size >= CholmodThreshold)
+  if (this->Size >= this->CholmodFrom)
   {
     this->Supernodal = std::make_unique<Cholmod>(false);
     return analyzeThenFactor(this->Supernodal->factor, lower, keepGoing);
@@ -185,7 +189,7 @@ bool SparseCholesky::factorPermuted(
   const SparseMatrix& lower, const std::function<bool()>& keepGoing)
 {
 #ifdef OTPARAM_HAVE_CHOLMOD
-  if (this->Size >= CholmodThreshold)
+  if (this->Size >= this->CholmodFrom)
   {
     this->Supernodal = std::make_unique<Cholmod>(true);
     return analyzeThenFactor(this->Supernodal->factor, lower, keepGoing);

@@ -23,6 +23,8 @@ public:
   static constexpr int CholmodThreshold = 200000;
 
   SparseCholesky();
+  // CHOLMOD from `cholmodFrom` unknowns up, for matrices whose crossover was measured apart.
+  explicit SparseCholesky(int cholmodFrom);
   ~SparseCholesky();
   SparseCholesky(const SparseCholesky&) = delete;
   SparseCholesky& operator=(const SparseCholesky&) = delete;
@@ -62,6 +64,7 @@ private:
   bool factorPermuted(const SparseMatrix& lower, const std::function<bool()>& keepGoing);
   Eigen::MatrixXd permuted(const Eigen::MatrixXd& b) const;
   int Size = -1;
+  int CholmodFrom = CholmodThreshold;
   Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower> Ldlt;
   // computeWithLeadingBlock: the factor of P A P^T in its own order; Position[i] = row of
   // unknown i in it.

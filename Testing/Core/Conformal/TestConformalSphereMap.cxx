@@ -183,6 +183,22 @@ TEST(ConformalSphereMap, CrowdedRoundSphereMapsByARotation)
   EXPECT_LE(largestRadiusError(c.map.sphere), 1e-12);
 }
 
+// Above SphereMapCholmodFrom (1e5) free points the passes factor with CHOLMOD's supernodal
+// LL^T instead of Eigen's LDL^T: the round sphere still maps by a rotation.
+TEST(ConformalSphereMap, LargeRoundSphereMapsByARotationThroughCholmod)
+{
+  const std::vector<Vec3> points = fibonacciSphere(110000);
+  const SurfaceMesh mesh = convexHullMesh(points);
+  ASSERT_EQ(checkSphereTopology(mesh), "");
+  const SphereCase c = mapSurface(mesh);
+  ASSERT_TRUE(c.map.status.ok()) << c.map.status.error;
+  report("round sphere, 110000 points", c);
+  EXPECT_EQ(c.map.flippedTriangles, 0);
+  EXPECT_LE(distanceAfterBestRotation(points, c.map.sphere), 1e-3);
+  EXPECT_LE(c.figures.meanAngleDistortionDegrees, 0.01);
+  EXPECT_LE(norm(pushedAreaCentre(mesh, c.map.sphere)), 1e-6);
+}
+
 TEST(ConformalSphereMap, BrainIsBalancedWithoutFlips)
 {
   const SphereCase c = checkSharedMesh("brain_choi_closed_48k.off");
