@@ -12,6 +12,19 @@
 namespace otparam
 {
 
+// atan2(y, x) for x > 0, by atan's series where |y| <= 1e-3 x (the first omitted term is below
+// 2e-19 of the result): the small triangles and arcs of fine meshes, whose atan2 calls were a
+// fifth of the sphere's composition and sampler at 194k points.
+inline double atan2Small(double y, double x)
+{
+  if (x > 0.0 && std::abs(y) <= 1e-3 * x)
+  {
+    const double t = y / x, t2 = t * t;
+    return t * (1.0 - t2 * (1.0 / 3.0 - 0.2 * t2));
+  }
+  return std::atan2(y, x);
+}
+
 // Signed area of the spherical triangle abc (positive when counter-clockwise seen from
 // outside), by Eriksson's formula tan(E / 2) = a.(b x c) / (1 + a.b + b.c + c.a). The triple
 // product is taken of differences, a.((b - a) x (c - a)), which keeps its relative precision
@@ -19,7 +32,7 @@ namespace otparam
 inline double sphericalTriangleArea(Vec3 a, Vec3 b, Vec3 c)
 {
   const double triple = dot(a, cross(b - a, c - a));
-  return 2.0 * std::atan2(triple, 1.0 + dot(a, b) + dot(b, c) + dot(c, a));
+  return 2.0 * atan2Small(triple, 1.0 + dot(a, b) + dot(b, c) + dot(c, a));
 }
 
 // Area of a convex spherical polygon (fan from its first vertex).
@@ -36,7 +49,7 @@ inline double sphericalPolygonArea(const std::vector<Vec3>& polygon)
 // Angle between unit vectors, accurate for small angles too.
 inline double sphericalDistance(Vec3 a, Vec3 b)
 {
-  return std::atan2(norm(cross(a, b)), dot(a, b));
+  return atan2Small(norm(cross(a, b)), dot(a, b));
 }
 
 // The integral of x dA over a convex spherical polygon (its centroid, unnormalized): the
