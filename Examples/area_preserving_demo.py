@@ -20,7 +20,9 @@ Progress is printed as the stages run. Written to OUTPUT_DIR (default ./otparam-
   and its Legendre dual in 3D), circle_texture.png (the surface textured with circles through
   the conformal coordinates, which keep them circles, and through the area-preserving ones,
   which make them ellipses of equal area), distortion_histograms.png (angle and area
-  distortion of both maps: the paper's Fig. 5).
+  distortion of both maps: the paper's Fig. 5), flat_map_curvature.png (the surface's mean
+  curvature, a point array of the input, on the surface and on the area-preserving disk, which
+  carries the input's arrays).
 
 Rendering needs an X server (Debian's VTK has no EGL/OSMesa): without DISPLAY, the script runs
 itself again under `xvfb-run -a`.
@@ -299,6 +301,57 @@ def render_histograms(table, path, size):
     return render_to_png(window, path)
 
 
+def with_mean_curvature(surface):
+    """The surface with its mean curvature as point array MeanCurvature (VTK's discrete
+    estimate), standing for any per-point data a user brings (a thickness, a label)."""
+    from vtkmodules.vtkFiltersGeneral import vtkCurvatures
+    curvatures = vtkCurvatures()
+    curvatures.SetInputData(surface)
+    curvatures.SetCurvatureTypeToMean()
+    curvatures.Update()
+    out = curvatures.GetOutput()
+    out.GetPointData().GetArray("Mean_Curvature").SetName("MeanCurvature")
+    return out
+
+
+def render_flat_map_scalars(param, name, path, size):
+    """The input's point array `name` on the surface (left) and on the area-preserving disk
+    (right, output port 1, which carries the input's arrays), with one colour scale: the 5th to
+    95th percentile."""
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    from vtkmodules.vtkFiltersCore import vtkPolyDataNormals
+    from vtkmodules.vtkRenderingCore import vtkActor, vtkPolyDataMapper, vtkRenderer
+
+    import numpy
+    surface, disk = param.GetOutput(), param.GetOutput(1)
+    values = vtk_to_numpy(disk.GetPointData().GetArray(name))
+    low, high = numpy.percentile(values, [5.0, 95.0])
+    window = new_window(size, size // 2)
+    for data, left in ((surface, 0.0), (disk, 0.5)):
+        normals = vtkPolyDataNormals()
+        normals.SetInputData(data)
+        normals.SplittingOff()
+        normals.Update()
+        mapper = vtkPolyDataMapper()
+        mapper.SetInputConnection(normals.GetOutputPort())
+        mapper.SetScalarModeToUsePointFieldData()
+        mapper.SelectColorArray(name)
+        mapper.SetScalarRange(low, high)
+        mapper.ScalarVisibilityOn()
+        actor = vtkActor()
+        actor.SetMapper(mapper)
+        renderer = vtkRenderer()
+        renderer.SetViewport(left, 0.0, left + 0.5, 1.0)
+        renderer.SetBackground(1.0, 1.0, 1.0)
+        renderer.AddActor(actor)
+        if data is disk:
+            top_view(renderer)
+        else:
+            view_along_mean_normal(renderer, normals.GetOutput(), -35.0).Zoom(1.05)
+        window.AddRenderer(renderer)
+    return render_to_png(window, path)
+
+
 def write_figures(param, conformal, sampler, transport, directory, size):
     """Every PNG of the figure set (see the module doc)."""
     from ot_solver_demo import render_png as render_power_diagram
@@ -314,6 +367,8 @@ def write_figures(param, conformal, sampler, transport, directory, size):
     render_circle_texture(param.GetOutput(), os.path.join(directory, "circle_texture.png"), size)
     render_histograms(param.GetOutputDataObject(2),
                       os.path.join(directory, "distortion_histograms.png"), size)
+    render_flat_map_scalars(param, "MeanCurvature",
+                            os.path.join(directory, "flat_map_curvature.png"), size)
 
 
 def summary(out):
@@ -357,6 +412,7 @@ def main():
         print(f"built-in hand-like surface: {surface.GetNumberOfPoints()} points, "
               f"{surface.GetNumberOfCells()} triangles", flush=True)
 
+    surface = with_mean_curvature(surface)
     param = vtkAreaPreservingParam()
     param.SetInputData(surface)
     param.SetNumberOfSamples(args.samples)
