@@ -218,13 +218,38 @@ def render_brenier_legendre(transport, path, size):
     return render_to_png(window, path)
 
 
+def smooth_mapper(data):
+    """A mapper of `data` with smooth point normals, and the data with them (for the camera)."""
+    from vtkmodules.vtkFiltersCore import vtkPolyDataNormals
+    from vtkmodules.vtkRenderingCore import vtkPolyDataMapper
+    normals = vtkPolyDataNormals()
+    normals.SetInputData(data)
+    normals.SplittingOff()
+    normals.Update()
+    mapper = vtkPolyDataMapper()
+    mapper.SetInputConnection(normals.GetOutputPort())
+    return mapper, normals.GetOutput()
+
+
+def half_renderer(window, left, mapper):
+    """A renderer of one actor on the half of `window` from `left` (0 or 0.5)."""
+    from vtkmodules.vtkRenderingCore import vtkActor, vtkRenderer
+    actor = vtkActor()
+    actor.SetMapper(mapper)
+    renderer = vtkRenderer()
+    renderer.SetViewport(left, 0.0, left + 0.5, 1.0)
+    renderer.SetBackground(1.0, 1.0, 1.0)
+    renderer.AddActor(actor)
+    window.AddRenderer(renderer)
+    return renderer, actor
+
+
 def render_circle_texture(surface, path, size):
     """The surface textured with circles through ConformalCoordinates (left) and through
     AreaPreservingCoordinates (right), seen along its mean normal."""
     from vtkmodules.vtkCommonCore import vtkDoubleArray
     from vtkmodules.vtkCommonDataModel import vtkPolyData
-    from vtkmodules.vtkFiltersCore import vtkPolyDataNormals
-    from vtkmodules.vtkRenderingCore import vtkActor, vtkPolyDataMapper, vtkRenderer, vtkTexture
+    from vtkmodules.vtkRenderingCore import vtkTexture
 
     texture = vtkTexture()
     texture.SetInputData(circle_image())
@@ -242,23 +267,11 @@ def render_circle_texture(surface, path, size):
         textured.SetPoints(surface.GetPoints())
         textured.SetPolys(surface.GetPolys())
         textured.GetPointData().SetTCoords(tcoords)
-        normals = vtkPolyDataNormals()
-        normals.SetInputData(textured)
-        normals.SplittingOff()
-        normals.Update()
-        mapper = vtkPolyDataMapper()
-        mapper.SetInputConnection(normals.GetOutputPort())
+        mapper, with_normals = smooth_mapper(textured)
         mapper.ScalarVisibilityOff()
-        actor = vtkActor()
-        actor.SetMapper(mapper)
+        renderer, actor = half_renderer(window, left, mapper)
         actor.SetTexture(texture)
-        renderer = vtkRenderer()
-        renderer.SetViewport(left, 0.0, left + 0.5, 1.0)
-        renderer.SetBackground(1.0, 1.0, 1.0)
-        renderer.AddActor(actor)
-        camera = view_along_mean_normal(renderer, normals.GetOutput(), -35.0)
-        camera.Zoom(1.3)
-        window.AddRenderer(renderer)
+        view_along_mean_normal(renderer, with_normals, -35.0).Zoom(1.3)
     return render_to_png(window, path)
 
 
@@ -319,8 +332,6 @@ def render_flat_map_scalars(param, name, path, size):
     (right, output port 1, which carries the input's arrays), with one colour scale: the 5th to
     95th percentile."""
     from vtkmodules.util.numpy_support import vtk_to_numpy
-    from vtkmodules.vtkFiltersCore import vtkPolyDataNormals
-    from vtkmodules.vtkRenderingCore import vtkActor, vtkPolyDataMapper, vtkRenderer
 
     import numpy
     surface, disk = param.GetOutput(), param.GetOutput(1)
@@ -328,27 +339,16 @@ def render_flat_map_scalars(param, name, path, size):
     low, high = numpy.percentile(values, [5.0, 95.0])
     window = new_window(size, size // 2)
     for data, left in ((surface, 0.0), (disk, 0.5)):
-        normals = vtkPolyDataNormals()
-        normals.SetInputData(data)
-        normals.SplittingOff()
-        normals.Update()
-        mapper = vtkPolyDataMapper()
-        mapper.SetInputConnection(normals.GetOutputPort())
+        mapper, with_normals = smooth_mapper(data)
         mapper.SetScalarModeToUsePointFieldData()
         mapper.SelectColorArray(name)
         mapper.SetScalarRange(low, high)
         mapper.ScalarVisibilityOn()
-        actor = vtkActor()
-        actor.SetMapper(mapper)
-        renderer = vtkRenderer()
-        renderer.SetViewport(left, 0.0, left + 0.5, 1.0)
-        renderer.SetBackground(1.0, 1.0, 1.0)
-        renderer.AddActor(actor)
+        renderer, _ = half_renderer(window, left, mapper)
         if data is disk:
             top_view(renderer)
         else:
-            view_along_mean_normal(renderer, normals.GetOutput(), -35.0).Zoom(1.05)
-        window.AddRenderer(renderer)
+            view_along_mean_normal(renderer, with_normals, -35.0).Zoom(1.05)
     return render_to_png(window, path)
 
 
