@@ -331,9 +331,9 @@ def render_flat_map_scalars(param, name, path, size):
     """The input's point array `name` on the surface (left) and on the area-preserving disk
     (right, output port 1, which carries the input's arrays), with one colour scale: the 5th to
     95th percentile."""
+    import numpy
     from vtkmodules.util.numpy_support import vtk_to_numpy
 
-    import numpy
     surface, disk = param.GetOutput(), param.GetOutput(1)
     values = vtk_to_numpy(disk.GetPointData().GetArray(name))
     low, high = numpy.percentile(values, [5.0, 95.0])
