@@ -6,7 +6,7 @@ from bad_disk_inputs import (CENTRE, INF, N, NAN, SURFACE_CASES, good_disk, reve
                              with_unreferenced_point)
 from otparam import vtkConformalDiskMap
 from otparam_test_utils import (MessageRecorder, cell_lists, check, check_failed_run, field_value,
-                                finish, same, snapshot)
+                                finish, same, snapshot, update_recorded)
 from vtkmodules.vtkCommonCore import vtkCommand
 
 
@@ -63,10 +63,7 @@ EXTRA = 10
 surface = with_unreferenced_point(EXTRA)
 before = snapshot(surface)
 mapper = vtkConformalDiskMap()
-mapper.SetInputData(surface)
-errors = MessageRecorder(mapper)
-warnings = MessageRecorder(mapper, vtkCommand.WarningEvent)
-mapper.Update()
+errors, warnings = update_recorded(mapper, surface)
 out = mapper.GetOutput()
 check(not errors.messages, f"unreferenced point: no error ({errors.text()})")
 check(len(warnings.messages) == 1 and "belong to no triangle" in warnings.text()

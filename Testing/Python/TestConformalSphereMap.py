@@ -13,7 +13,7 @@ from bad_disk_inputs import add_cells, good_disk
 from otparam import vtkConformalSphereMap
 from otparam_test_utils import (MessageRecorder, check, check_abort, check_failed_run,
                                 field_value, finish, make_domain, param_metrics, read_mesh,
-                                same, shared_mesh, snapshot)
+                                same, shared_mesh, snapshot, update_recorded)
 from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.vtkCommonCore import vtkCommand, vtkDoubleArray
 
@@ -35,10 +35,7 @@ def check_map(name, surface):
     surface.GetPointData().AddArray(label)
     before = snapshot(surface)
     mapper = vtkConformalSphereMap()
-    mapper.SetInputData(surface)
-    errors = MessageRecorder(mapper)
-    warnings = MessageRecorder(mapper, vtkCommand.WarningEvent)
-    mapper.Update()
+    errors, warnings = update_recorded(mapper, surface)
     out = mapper.GetOutput()
     check(not errors.messages and not warnings.messages,
           f"{name}: no error or warning ({errors.text()}{warnings.text()})")
@@ -129,10 +126,7 @@ spot = read_mesh(shared_mesh("spot_closed_3k.obj"))
 kept = [tuple(int(v) for v in t) for k, t in enumerate(triangles_of(spot)) if k not in (10, 500, 2000)]
 holey = make_domain(vtk_to_numpy(spot.GetPoints().GetData()).tolist(), kept)
 mapper = vtkConformalSphereMap()
-mapper.SetInputData(holey)
-errors = MessageRecorder(mapper)
-warnings = MessageRecorder(mapper, vtkCommand.WarningEvent)
-mapper.Update()
+errors, warnings = update_recorded(mapper, holey)
 out = mapper.GetOutput()
 X = vtk_to_numpy(out.GetPoints().GetData()) if out.GetNumberOfPoints() else np.zeros((0, 3))
 angle, closed_angle = (field_value(m.GetOutput(), "MeanAngleDistortion") for m in (mapper, spot_mapper))

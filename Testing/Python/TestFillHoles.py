@@ -12,10 +12,9 @@ import math
 
 import numpy as np
 from otparam import vtkAreaPreservingParam, vtkConformalDiskMap
-from otparam_test_utils import (MessageRecorder, check, field_value, finish, make_domain,
-                                param_metrics, read_mesh, ring_disk, shared_mesh)
+from otparam_test_utils import (check, field_value, finish, make_domain, param_metrics, read_mesh,
+                                ring_disk, shared_mesh, update_recorded)
 from vtkmodules.util.numpy_support import vtk_to_numpy
-from vtkmodules.vtkCommonCore import vtkCommand
 
 scorer = param_metrics()
 
@@ -64,10 +63,7 @@ def circle_polygon_area(uv, triangles):
 
 def run(cls, surface):
     algorithm = cls()
-    algorithm.SetInputData(surface)
-    errors = MessageRecorder(algorithm)
-    warnings = MessageRecorder(algorithm, vtkCommand.WarningEvent)
-    algorithm.Update()
+    errors, warnings = update_recorded(algorithm, surface)
     return algorithm.GetOutput(), errors, warnings
 
 

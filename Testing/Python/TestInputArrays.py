@@ -6,9 +6,9 @@ the surface's, and would shade the image as if it were the surface."""
 
 import numpy as np
 from otparam import vtkAreaPreservingParam, vtkConformalDiskMap, vtkConformalSphereMap
-from otparam_test_utils import MessageRecorder, check, finish, make_domain, ring_disk
+from otparam_test_utils import check, finish, make_domain, ring_disk, update_recorded
 from vtkmodules.util.numpy_support import numpy_to_vtk, numpy_to_vtkIdTypeArray, vtk_to_numpy
-from vtkmodules.vtkCommonCore import vtkCommand, vtkPoints
+from vtkmodules.vtkCommonCore import vtkPoints
 from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData
 from vtkmodules.vtkFiltersCore import vtkPolyDataNormals
 from vtkmodules.vtkFiltersSources import vtkSphereSource
@@ -82,10 +82,7 @@ sphere = with_arrays(sphere_source.GetOutput())
 def run(name, algorithm, data, warning):
     """Runs `algorithm` on `data`: no error, and one warning about the unused point, which says
     `warning`."""
-    algorithm.SetInputData(data)
-    errors = MessageRecorder(algorithm)
-    warnings = MessageRecorder(algorithm, vtkCommand.WarningEvent)
-    algorithm.Update()
+    errors, warnings = update_recorded(algorithm, data)
     check(not errors.messages and len(warnings.messages) == 1 and warning in warnings.text(),
           f"{name}: mapped, the unused point named ({errors.text()}{warnings.text()})")
 

@@ -146,6 +146,15 @@ class MessageRecorder:
         return "\n".join(self.messages)
 
 
+def update_recorded(algorithm, data):
+    """Runs `algorithm` on `data`; returns the recorders of its errors and warnings."""
+    algorithm.SetInputData(data)
+    errors = MessageRecorder(algorithm)
+    warnings = MessageRecorder(algorithm, vtkCommand.WarningEvent)
+    algorithm.Update()
+    return errors, warnings
+
+
 def check_failed_run(name, errors, pipeline_errors, words):
     """A bad-input run: exactly one error that mentions each of `words` (a tuple = any of
     them), and RequestData reporting failure to the pipeline."""
