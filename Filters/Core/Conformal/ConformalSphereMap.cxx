@@ -520,9 +520,10 @@ bool solveSouthPass(const SparseMatrix& L, const std::vector<char>& fixed, Vec3 
   return true;
 }
 
-// Step 4: the image made orientation-consistent, then balanced.
-void orientAndBalance(const SurfaceMesh& mesh, const ConformalSphereMapOptions& options, Vec3 north,
-  std::vector<Vec3>& sphere, ConformalSphereMapResult& result)
+// Step 4: the image made orientation-consistent, then balanced (`weight`: areaWeights(mesh)).
+void orientAndBalance(const SurfaceMesh& mesh, const std::vector<double>& weight,
+  const ConformalSphereMapOptions& options, Vec3 north, std::vector<Vec3>& sphere,
+  ConformalSphereMapResult& result)
 {
   if (signedVolume(sphere, mesh.triangles) < 0.0)
   {
@@ -532,7 +533,7 @@ void orientAndBalance(const SurfaceMesh& mesh, const ConformalSphereMapOptions& 
     }
   }
   result.mirrored = signedVolume(mesh.points, mesh.triangles) < 0.0;
-  const BalanceOutcome outcome = balance(mesh.triangles, areaWeights(mesh), sphere, north,
+  const BalanceOutcome outcome = balance(mesh.triangles, weight, sphere, north,
     options.balanceTolerance, options.maximumBalanceIterations);
   result.balanceIterations = outcome.iterations;
   result.balanceResidual = outcome.residual;
@@ -611,7 +612,8 @@ ConformalSphereMapResult computeWithLaplacian(
   // out), tracking the image of the north pole, the puncture's direction. Roughly: it only
   // chooses the second pass's pole and fixed points.
   Vec3 north{ 0.0, 0.0, 1.0 };
-  std::vector<double> firstWeight = areaWeights(mesh);
+  const std::vector<double> weight = areaWeights(mesh);
+  std::vector<double> firstWeight = weight;
   firstWeight[result.punctureTriangle] = 0.0;
   balance(mesh.triangles, firstWeight, sphere, north, 1e-3, 50);
   if (!keepGoing(0.4))
@@ -641,7 +643,7 @@ ConformalSphereMapResult computeWithLaplacian(
 
   // 4. Orientation, then the final balancing.
   t0 = Clock::now();
-  orientAndBalance(mesh, options, north, sphere, result);
+  orientAndBalance(mesh, weight, options, north, sphere, result);
   result.secondsBalance = secondsSince(t0);
   keepFinite(mesh, std::move(sphere), result);
   if (result.status.ok())
