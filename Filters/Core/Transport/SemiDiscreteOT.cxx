@@ -387,7 +387,26 @@ namespace
 // their masses must shrink a lot. Measured, Newton iterations from the Voronoi / the shrunk
 // start, 1e4 random Diracs in the disk: contrast 10: 6 / 8; 100: 16 / 12; 1e3: 72 / 18;
 // 1e4: 84 / 28 (3e4 Diracs: 119 / 30).
+// Of the two, the start whose typical cell is nearer its mass is kept (median over the Diracs
+// of |log(m_i / nu_i)|): random Diracs of contrasted masses keep the shrunk start (contrast
+// 100 / 1e4: 1.47 / 4.20 against 1.60 / 4.37 for the Voronoi diagram), while a conformal
+// image's adaptive samples, of near-equal masses crowded where the surface is, keep their
+// Voronoi diagram (hand_choi_53k 3.59 against 3.96, face_dense_gpp_5k 0.13 against 0.28) and
+// need fewer Newton iterations from it (docs/performance.md).
 constexpr double MildContrast = 30.0;
+
+// Median over the Diracs of |log(m_i / nu_i)|.
+double medianAbsLogMassRatio(const std::vector<double>& cellMass, const std::vector<double>& nu)
+{
+  std::vector<double> logRatio(nu.size());
+  for (size_t i = 0; i < nu.size(); ++i)
+  {
+    logRatio[i] = std::abs(std::log(cellMass[i] / nu[i]));
+  }
+  const auto middle = logRatio.begin() + static_cast<std::ptrdiff_t>(logRatio.size() / 2);
+  std::nth_element(logRatio.begin(), middle, logRatio.end());
+  return *middle;
+}
 
 // Newton's first steps from a start with cells far below their masses are tiny: the mass of a
 // small cell grows like the square of how far its height is lowered, so the linear model asks
@@ -507,6 +526,26 @@ bool coarseToFineStart(const SourceMeasure& source, const std::vector<Vec2>& dir
   return false;
 }
 
+// The shrunk start's heights (see MildContrast).
+void shrunkStart(
+  const SourceMeasure& source, const std::vector<Vec2>& diracs, std::vector<Height>& h)
+{
+  Vec2 center;
+  double inner;
+  source.innerDisk(center, inner);
+  double reach = 0.0;
+  for (const Vec2& y : diracs)
+  {
+    reach = std::max(reach, norm(y - center));
+  }
+  const double s = reach > 0.0 ? 0.9 * inner / reach : 1.0;
+  for (size_t i = 0; i < diracs.size(); ++i)
+  {
+    const Vec2 z = center + s * (diracs[i] - center);
+    h[i] = static_cast<long double>(dot(z, z)) / (2.0L * s);
+  }
+}
+
 bool startHeights(const SourceMeasure& source, const std::vector<Vec2>& diracs,
   const std::vector<double>& nu, double tolerance, bool coarseToFine, std::vector<Height>& h,
   PowerDiagram& diagram, Evaluation& ev, OTResult& result)
@@ -522,33 +561,35 @@ bool startHeights(const SourceMeasure& source, const std::vector<Vec2>& diracs,
   // Many Diracs of high contrast go straight to the coarse-to-fine start: their Voronoi diagram
   // is not the solution, and evaluating it would cost a whole evaluation.
   const bool multiscale = coarseToFine && !mild && static_cast<int>(n) >= MultiscaleMinimumDiracs;
-  if (!multiscale)
-  {
-    evaluate(source, diracs, h, diagram, ev, result);
-    if (ev.minMass > 0.0 && (relativeError(ev.cellMass, nu) <= tolerance || mild))
-    {
-      return false;
-    }
-  }
   if (multiscale && coarseToFineStart(source, diracs, nu, h, diagram, ev, result))
   {
     return true;
   }
-  Vec2 center;
-  double inner;
-  source.innerDisk(center, inner);
-  double reach = 0.0;
-  for (const Vec2& y : diracs)
-  {
-    reach = std::max(reach, norm(y - center));
-  }
-  const double s = reach > 0.0 ? 0.9 * inner / reach : 1.0;
-  for (size_t i = 0; i < n; ++i)
-  {
-    const Vec2 z = center + s * (diracs[i] - center);
-    h[i] = static_cast<long double>(dot(z, z)) / (2.0L * s);
-  }
   evaluate(source, diracs, h, diagram, ev, result);
+  if (ev.minMass > 0.0 && (relativeError(ev.cellMass, nu) <= tolerance || mild))
+  {
+    return false;
+  }
+  std::vector<Height> voronoiHeights;
+  Evaluation voronoi;
+  PowerDiagram voronoiDiagram;
+  const bool voronoiUsable = ev.minMass > 0.0;
+  if (voronoiUsable)
+  {
+    voronoiHeights = h;
+    std::swap(voronoi, ev);
+    std::swap(voronoiDiagram, diagram);
+  }
+  shrunkStart(source, diracs, h);
+  evaluate(source, diracs, h, diagram, ev, result);
+  if (voronoiUsable &&
+    (ev.minMass <= 0.0 ||
+      medianAbsLogMassRatio(voronoi.cellMass, nu) < medianAbsLogMassRatio(ev.cellMass, nu)))
+  {
+    h.swap(voronoiHeights);
+    std::swap(voronoi, ev);
+    std::swap(voronoiDiagram, diagram);
+  }
   return false;
 }
 
