@@ -2,15 +2,19 @@
 crowded by the conformal map into a part of the disk whose area density grows like
 exp(2 L / rho). One transport converges while that range is below ~3e12 (L / rho = 14) and
 stopped at its start beyond; the disk map now transports in stages above 1e12 (field data
-TransportStages). Measured with default properties: converged with no flip up to L / rho = 50
-(the conformal density spans e^100 = 2.7e43; 4 stages; mean |log area ratio| 0.003 at
-L / rho = 2, 0.04-0.05 at 14-20, 0.08 at 40, 0.10 at 50; at L / rho = 20 it moves with the
+TransportStages). Measured with default properties: converged with no flip up to L / rho = 70
+(exp(140) = 6e60 in theory; 6 stages; mean |log area ratio| 0.003 at L / rho = 2, 0.04-0.05 at
+14-20, 0.08 at 40, 0.10-0.12 at 50, 0.16 at 60, 0.17 at 70; at L / rho = 20 it moves with the
 sample set: 0.045-0.057 for 3000-6000 samples, hence a bound of 0.06 there). L / rho = 50
 needs the composition's re-embedding of collapsed patches: without it the finger's crushed
-images stayed folded and the user got an error. At L / rho = 60 (5e55 in the sampled density)
-the staged transport's first sampling fails, and the user gets an error that names the
-crowding, the stage that failed and what to do, never only a solver's state. The same finger on
-a closed surface goes to the sphere, staged the same way, up to L / rho = 30."""
+images stayed folded and the user got an error. From L / rho = 60 the conformal image itself
+folds the finger's tip (222 triangles flipped at 60, 1609 at 70: coordinates ~1e-17 apart); a
+stage then samples the unfolded part and the next one untangles the fold at the scale the
+stage gave the finger (until 2026-11-27 the first stage's sampling failed at 60). At 80 the
+stages leave a map whose last composition cannot be untangled: the user gets the map with a
+warning that names the crowding and what to do; at 100 a stage's sampling fails, and the error
+names the crowding, the stage that failed and what to do, never only a solver's state. The
+same finger on a closed surface goes to the sphere, staged the same way, up to L / rho = 30."""
 
 import math
 
@@ -85,22 +89,35 @@ def run(length_over_radius, closed=False):
 
 
 for length, stages, area in ((2, 0, 0.01), (10, 0, 0.05), (14, 1, 0.05), (20, 1, 0.06),
-                             (40, 3, 0.1), (50, 4, 0.12)):
+                             (40, 3, 0.1), (50, 4, 0.13), (60, 5, 0.2), (70, 6, 0.2)):
     fig, errors, warnings = run(length)
-    check(not errors.messages and not warnings.messages,
-          f"L/rho {length}: no error or warning ({errors.text()}{warnings.text()})")
+    # From 60 the conformal map's own image folds (it says so, and that the map does not).
+    folds = length >= 60
+    check(not errors.messages and (len(warnings.messages) == 1 if folds else not warnings.messages)
+          and (not folds or "flipped in the disk image. The area-preserving map has none"
+               in warnings.text()),
+          f"L/rho {length}: no error, {'only the conformal fold' if folds else 'no'} warning "
+          f"({errors.text()}{warnings.text()})")
     check(fig["Converged"] == 1 and fig["FlippedTriangles"] == 0
           and fig["MeanAbsLogAreaRatio"] <= area and fig["TransportStages"] == stages,
           f"L/rho {length}: converged, no flip, {stages} staged transport(s), mean |log area "
           f"ratio| <= {area} ({fig})")
-check(fig["ConformalMaximumAbsLogAreaRatio"] >= 99.0,
-      "the longest finger that converges spans e^99 in conformal area density")
+    if length == 50:
+        check(fig["ConformalMaximumAbsLogAreaRatio"] >= 99.0,
+              "L/rho 50: the conformal area density spans e^99")
 
-fig, errors, warnings = run(60)
+fig, errors, warnings = run(80)
+text = warnings.text().lower()
+check(not errors.messages and fig["FlippedTriangles"] > 0 and "flipped in the disk:" in text
+      and "crowds part of the surface beyond what" in text and "cut the surface open" in text,
+      f"L/rho 80: the map comes with a warning that names its flips, the crowding and what to do "
+      f"({warnings.text()})")
+
+fig, errors, warnings = run(100)
 text = errors.text().lower()
 check(not fig and "crowds part of the surface" in text and "area density spans" in text
-      and "stage 1 of the staged transport" in text and "cut the surface open" in text,
-      f"L/rho 60: an error names the crowding, the failed stage and what to do ({errors.text()})")
+      and "of the staged transport" in text and "cut the surface open" in text,
+      f"L/rho 100: an error names the crowding, the failed stage and what to do ({errors.text()})")
 
 # Closed, onto the sphere (Domain Automatic): one transport up to L / rho = 14 before the
 # stages (at 17 the composition failed, at 20 the transport stopped at its start and 1579

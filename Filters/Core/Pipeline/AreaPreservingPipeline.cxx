@@ -1,5 +1,6 @@
 #include "Pipeline/AreaPreservingPipeline.h"
 
+#include "Common/DirectedEdges.h"
 #include "Common/Memory.h"
 #include "Mesh/HoleFilling.h"
 #include "Transport/PlanarSource.h"
@@ -186,11 +187,12 @@ std::string transportFailure(const Transport& transport)
         : transport.status.error);
 }
 
-// "" when a stage's composition left every triangle positive, else why not.
+// "" when a stage's composition left every triangle positive (or, with flipsAllowed, when it
+// ran), else why not.
 template <class Composition>
-std::string compositionFailure(const Composition& composed)
+std::string compositionFailure(const Composition& composed, bool flipsAllowed = false)
 {
-  if (composed.status.ok() && composed.flippedTriangles == 0)
+  if (composed.status.ok() && (composed.flippedTriangles == 0 || flipsAllowed))
   {
     return {};
   }
@@ -213,16 +215,90 @@ std::vector<Triangle> diracTriangulation(
     .triangles;
 }
 
+// The triangles of positive area in a planar map, less those at a vertex where two fans of them
+// would meet (a pinch the sampler's domain cannot have): what a disk stage samples.
+std::vector<bool> unfoldedPart(const std::vector<Vec2>& uv, const std::vector<Triangle>& triangles)
+{
+  std::vector<bool> kept(triangles.size());
+  for (size_t t = 0; t < triangles.size(); ++t)
+  {
+    const Triangle& tri = triangles[t];
+    kept[t] = cross(uv[tri[1]] - uv[tri[0]], uv[tri[2]] - uv[tri[0]]) > 0.0;
+  }
+  bool pinched = std::find(kept.begin(), kept.end(), false) != kept.end();
+  while (pinched)
+  {
+    // A kept triangle's edge that no other kept triangle shares is on the domain's boundary; a
+    // vertex on more than two such edges pinches it.
+    std::vector<Triangle> keptTriangles;
+    for (size_t t = 0; t < triangles.size(); ++t)
+    {
+      if (kept[t])
+      {
+        keptTriangles.push_back(triangles[t]);
+      }
+    }
+    const auto edges = sortedDirectedEdges(keptTriangles);
+    std::vector<int> boundaryEdges(uv.size(), 0);
+    for (size_t e = 0; e < edges.size();)
+    {
+      size_t next = e + 1;
+      while (next < edges.size() && edges[next].first >> 1 == edges[e].first >> 1)
+      {
+        ++next;
+      }
+      if (next == e + 1)
+      {
+        const Triangle& tri = keptTriangles[edges[e].second / 3];
+        const int k = edges[e].second % 3;
+        ++boundaryEdges[tri[k]];
+        ++boundaryEdges[tri[(k + 1) % 3]];
+      }
+      e = next;
+    }
+    pinched = false;
+    for (size_t t = 0; t < triangles.size(); ++t)
+    {
+      for (int k = 0; kept[t] && k < 3; ++k)
+      {
+        if (boundaryEdges[triangles[t][k]] > 2)
+        {
+          kept[t] = false;
+          pinched = true;
+        }
+      }
+    }
+  }
+  return kept;
+}
+
 // What a staged transport does on each domain: sample the map run.startUv / run.startSphere,
 // transport from the uniform domain, compose, and adopt the composed map with its density.
+// On the disk a stage may fold: a finger crowded beyond double precision folds and collapses
+// its tip in the conformal image (L / rho = 60: 222 triangles flipped), so a stage samples the
+// unfolded part, transports it, and leaves the fold to the next stage's composition, which
+// untangles it at the wider scale the stage gave the finger (TestCrowding: converged with no
+// flip up to L / rho = 70, e^140, where a folded stage ended in an error from L / rho = 60).
 struct DiskStaging
 {
   using Point = Vec2;
+  static constexpr bool MayFold = true;
   static SamplingStage sample(const AreaPreservingResult& run, const std::vector<double>& density,
     const SamplerOptions& options)
   {
-    return runSamplingStage(
-      run.startUv, run.conformal.surface.mesh.triangles, {}, density, options);
+    const std::vector<Triangle>& all = run.conformal.surface.mesh.triangles;
+    const std::vector<bool> kept = unfoldedPart(run.startUv, all);
+    std::vector<Triangle> triangles;
+    std::vector<double> values;
+    for (size_t t = 0; t < all.size(); ++t)
+    {
+      if (kept[t])
+      {
+        triangles.push_back(all[t]);
+        values.push_back(density[t]);
+      }
+    }
+    return runSamplingStage(run.startUv, triangles, {}, values, options);
   }
   static TransportStage transport(const std::vector<Vec2>& diracs,
     const std::vector<double>& masses, const OTOptions& options, double maximumArcAngle)
@@ -248,6 +324,7 @@ struct DiskStaging
 struct SphereStaging
 {
   using Point = Vec3;
+  static constexpr bool MayFold = false;
   static SphereSamplingStage sample(const SphereParameterizationResult& run,
     const std::vector<double>& density, const SamplerOptions& options)
   {
@@ -306,7 +383,7 @@ std::string transportStage(
   compositionOptions.progress = keepGoing;
   const auto composed = Staging::compose(run, sampling, transport, diracs, compositionOptions);
   run.status.aborted = composed.status.aborted;
-  const std::string compositionError = compositionFailure(composed);
+  const std::string compositionError = compositionFailure(composed, Staging::MayFold);
   if (!compositionError.empty())
   {
     return compositionError;
@@ -364,8 +441,28 @@ void warnAboutTheMap(Run& run, const char* where)
   {
     msg << run.figures.flippedTriangles << " triangle(s) are flipped " << where
         << ": the untangling did not free them.";
+    if (run.transportStages > 0)
+    {
+      msg << " The conformal map crowds part of the surface beyond what " << run.transportStages
+          << " staged transport(s) could widen (a protrusion such as a finger, a limb or a tail "
+             "too long for its width). Cut the surface open closer to the protrusion, or map its "
+             "parts separately.";
+    }
     run.status.warnings.push_back(msg.str());
     msg.str("");
+  }
+  else if (run.conformal.figures.flippedTriangles > 0)
+  {
+    // The conformal stage's own warning (addConformalWarnings) speaks of its image only: say
+    // that the map the user gets has no such fold (a finger crowded beyond double precision).
+    for (std::string& warning : run.status.warnings)
+    {
+      if (warning.rfind("conformal map: ", 0) == 0 &&
+        warning.find(" are flipped ") != std::string::npos)
+      {
+        warning += " The area-preserving map has none: its composition untangled them.";
+      }
+    }
   }
   if (!run.transport.result.converged)
   {
