@@ -283,6 +283,14 @@ struct DiskStaging
 {
   using Point = Vec2;
   static constexpr bool MayFold = true;
+  static bool folded(const AreaPreservingResult& run)
+  {
+    const std::vector<Vec2>& uv = run.startUv;
+    const std::vector<Triangle>& triangles = run.conformal.surface.mesh.triangles;
+    return std::any_of(triangles.begin(), triangles.end(),
+      [&uv](const Triangle& t)
+      { return !(cross(uv[t[1]] - uv[t[0]], uv[t[2]] - uv[t[0]]) > 0.0); });
+  }
   static SamplingStage sample(const AreaPreservingResult& run, const std::vector<double>& density,
     const SamplerOptions& options)
   {
@@ -325,6 +333,7 @@ struct SphereStaging
 {
   using Point = Vec3;
   static constexpr bool MayFold = false;
+  static bool folded(const SphereParameterizationResult&) { return false; }
   static SphereSamplingStage sample(const SphereParameterizationResult& run,
     const std::vector<double>& density, const SamplerOptions& options)
   {
@@ -401,7 +410,13 @@ void transportInStages(const AreaPreservingOptions& options, Run& run)
   run.startDensity = run.conformal.areaDensityPerTriangle;
   const auto keepGoing = [&options](double)
   { return !options.progress || options.progress("sampling", SamplingRange.start); };
-  while (rangeOf(run.startDensity) > CrowdedDensityRange && run.status.ok())
+  // A stage that left a fold (DiskStaging::MayFold) is followed by another, which untangles it.
+  const auto moreStages = [&run]
+  {
+    return rangeOf(run.startDensity) > CrowdedDensityRange ||
+      (run.transportStages > 0 && Staging::folded(run));
+  };
+  while (moreStages() && run.status.ok())
   {
     if (run.transportStages == MaximumTransportStages ||
       checkDensityValues(run.startDensity, "cell") != "")
