@@ -14,7 +14,7 @@ stage gave the finger (until 2026-11-27 the first stage's sampling failed at 60)
 stages leave a map whose last composition cannot be untangled: the user gets the map with a
 warning that names the crowding and what to do; at 100 a stage's sampling fails, and the error
 names the crowding, the stage that failed and what to do, never only a solver's state. The
-same finger on a closed surface goes to the sphere, staged the same way, up to L / rho = 30."""
+same finger on a closed surface goes to the sphere, staged the same way, up to L / rho = 36."""
 
 import math
 
@@ -122,12 +122,20 @@ check(not fig and "crowds part of the surface" in text and "area density spans" 
 # Closed, onto the sphere (Domain Automatic): one transport up to L / rho = 14 before the
 # stages (at 17 the composition failed, at 20 the transport stopped at its start and 1579
 # triangles stayed flipped); staged up to 30, whose first stage needs the sphere's re-embedding
-# of collapsed patches (471 triangles flipped without it). At 35-40 the conformal sphere map
-# itself crushes the finger's triangles (range 5e31, coordinates ~1e-16 apart).
-for length, stages, area in ((10, 0, 0.03), (20, 1, 0.03), (30, 2, 0.04)):
+# of collapsed patches (471 triangles flipped without it). From 33 the conformal sphere map
+# itself crushes and folds the finger's tip (range 5e31, coordinates ~1e-16 apart): a stage
+# samples the sphere with each such patch replaced by a fan from its rim's centre and the next
+# one untangles it (until 2026-11-27 the first stage's sampling failed from 33 on). At 38-40 the
+# first stage's transport does not converge.
+for length, stages, area in ((10, 0, 0.03), (20, 1, 0.03), (30, 2, 0.04), (36, 3, 0.04)):
     fig, errors, warnings = run(length, closed=True)
-    check(not errors.messages and not warnings.messages,
-          f"closed, L/rho {length}: no error or warning ({errors.text()}{warnings.text()})")
+    folds = length > 30
+    check(not errors.messages
+          and (not folds and not warnings.messages
+               or folds and len(warnings.messages) == 1
+               and "The area-preserving map has none" in warnings.text()),
+          f"closed, L/rho {length}: no error, {'only the conformal fold' if folds else 'no'} "
+          f"warning ({errors.text()}{warnings.text()})")
     check(fig["Domain"] == 2 and fig["Converged"] == 1 and fig["FlippedTriangles"] == 0
           and fig["MeanAbsLogAreaRatio"] <= area and fig["TransportStages"] == stages,
           f"closed, L/rho {length}: on the sphere, converged, no flip, {stages} staged "

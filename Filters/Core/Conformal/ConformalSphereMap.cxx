@@ -706,7 +706,7 @@ ConformalSphereMapResult computeConformalSphereMap(
     std::ostringstream msg;
     msg << result.flippedTriangles
         << " triangle(s) are flipped on the sphere (clockwise seen from outside) with both the "
-           "mesh's and the intrinsic Delaunay cotangent Laplacian";
+           "mesh's and the intrinsic Delaunay cotangent Laplacian.";
     result.status.warnings.push_back(msg.str());
   }
   return result;

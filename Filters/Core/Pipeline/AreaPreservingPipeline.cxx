@@ -2,6 +2,7 @@
 
 #include "Common/DirectedEdges.h"
 #include "Common/Memory.h"
+#include "Common/SphericalGeometry.h"
 #include "Mesh/HoleFilling.h"
 #include "Transport/PlanarSource.h"
 
@@ -9,6 +10,8 @@
 #include <chrono>
 #include <cmath>
 #include <exception>
+#include <map>
+#include <set>
 #include <sstream>
 
 namespace otparam
@@ -187,19 +190,12 @@ std::string transportFailure(const Transport& transport)
         : transport.status.error);
 }
 
-// "" when a stage's composition left every triangle positive (or, with flipsAllowed, when it
-// ran), else why not.
+// "" when a stage's composition ran, else why not. It may leave triangles flipped (a fold the
+// conformal map made of a crowded finger): the next stage untangles them.
 template <class Composition>
-std::string compositionFailure(const Composition& composed, bool flipsAllowed = false)
+std::string compositionFailure(const Composition& composed)
 {
-  if (composed.status.ok() && (composed.flippedTriangles == 0 || flipsAllowed))
-  {
-    return {};
-  }
-  return "composition: " +
-    (composed.status.error.empty()
-        ? std::to_string(composed.flippedTriangles) + " triangle(s) stay flipped"
-        : composed.status.error);
+  return composed.status.ok() ? std::string() : "composition: " + composed.status.error;
 }
 
 // The Diracs' spherical Delaunay triangulation for the composition: the sampler's when every
@@ -274,15 +270,16 @@ std::vector<bool> unfoldedPart(const std::vector<Vec2>& uv, const std::vector<Tr
 
 // What a staged transport does on each domain: sample the map run.startUv / run.startSphere,
 // transport from the uniform domain, compose, and adopt the composed map with its density.
-// On the disk a stage may fold: a finger crowded beyond double precision folds and collapses
-// its tip in the conformal image (L / rho = 60: 222 triangles flipped), so a stage samples the
-// unfolded part, transports it, and leaves the fold to the next stage's composition, which
-// untangles it at the wider scale the stage gave the finger (TestCrowding: converged with no
-// flip up to L / rho = 70, e^140, where a folded stage ended in an error from L / rho = 60).
+// A stage may fold: a finger crowded beyond double precision folds and collapses its tip in the
+// conformal image (disk, L / rho = 60: 222 triangles flipped; sphere, 36: 100), so a stage
+// samples around the fold (the disk's unfolded part, the sphere with the fold healed by a fan),
+// transports, and leaves the fold to the next stage's composition, which untangles it at the
+// wider scale the stage gave the finger (TestCrowding: converged with no flip up to L / rho =
+// 70, e^140, on the disk, 36 on the sphere, where a folded stage ended in an error from 60 and
+// 33).
 struct DiskStaging
 {
   using Point = Vec2;
-  static constexpr bool MayFold = true;
   static bool folded(const AreaPreservingResult& run)
   {
     const std::vector<Vec2>& uv = run.startUv;
@@ -329,16 +326,149 @@ struct DiskStaging
   }
 };
 
+// The rim of the patch (the triangles inPatch), as directed edges a -> b (the patch on the
+// left), when it is one simple loop; empty otherwise.
+std::map<int, int> patchRim(
+  const std::vector<Triangle>& triangles, const std::vector<bool>& inPatch)
+{
+  std::set<std::pair<int, int>> edges;
+  for (size_t t = 0; t < triangles.size(); ++t)
+  {
+    for (int k = 0; inPatch[t] && k < 3; ++k)
+    {
+      edges.insert({ triangles[t][k], triangles[t][(k + 1) % 3] });
+    }
+  }
+  std::map<int, int> rim;
+  for (const auto& [a, b] : edges)
+  {
+    if (!edges.count({ b, a }) && !rim.emplace(a, b).second)
+    {
+      return {}; // a vertex where the rim touches itself
+    }
+  }
+  // One loop: following it from a rim vertex comes back after visiting every rim vertex.
+  std::size_t steps = 0;
+  for (int v = rim.empty() ? -1 : rim.begin()->first; steps < rim.size();)
+  {
+    const auto next = rim.find(v);
+    if (next == rim.end())
+    {
+      return {};
+    }
+    v = next->second;
+    ++steps;
+    if (v == rim.begin()->first)
+    {
+      break;
+    }
+  }
+  return steps == rim.size() ? rim : std::map<int, int>{};
+}
+
+// The centre on the sphere of a rim around which the fan (a, b, centre) is positive for every
+// rim edge a -> b, or false.
+bool fanCentre(const std::vector<Vec3>& points, const std::map<int, int>& rim, Vec3& centre)
+{
+  Vec3 sum{};
+  for (const auto& edge : rim)
+  {
+    sum = sum + points[edge.first];
+  }
+  if (rim.empty() || !(norm(sum) > 1e-3))
+  {
+    return false;
+  }
+  centre = normalized(sum);
+  return std::all_of(rim.begin(), rim.end(),
+    [&](const std::pair<const int, int>& edge)
+    { return sphericalTriangleArea(points[edge.first], points[edge.second], centre) > 0.0; });
+}
+
+// The sphere's sampler takes a closed mesh of positive triangles only. For a stage's sampling
+// alone, the patch around folded or degenerate triangles (the conformal sphere map crushes a
+// long finger's tip) is replaced by a fan from its rim's centre, the patch grown ring by ring
+// (up to 8) until its rim is one loop around which the fan is positive. When none is, the mesh
+// is left as it is and the sampler names the fold.
+void healFolds(
+  std::vector<Vec3>& points, std::vector<Triangle>& triangles, std::vector<double>& density)
+{
+  std::vector<bool> inPatch(triangles.size());
+  for (size_t t = 0; t < triangles.size(); ++t)
+  {
+    const Triangle& tri = triangles[t];
+    inPatch[t] = !(sphericalTriangleArea(points[tri[0]], points[tri[1]], points[tri[2]]) > 0.0);
+  }
+  if (std::find(inPatch.begin(), inPatch.end(), true) == inPatch.end())
+  {
+    return;
+  }
+  for (int ring = 0; ring < 8; ++ring)
+  {
+    // One more ring: every triangle touching a vertex of the patch.
+    std::vector<bool> patchVertex(points.size(), false);
+    for (size_t t = 0; t < triangles.size(); ++t)
+    {
+      for (int k = 0; inPatch[t] && k < 3; ++k)
+      {
+        patchVertex[triangles[t][k]] = true;
+      }
+    }
+    for (size_t t = 0; t < triangles.size(); ++t)
+    {
+      const Triangle& tri = triangles[t];
+      inPatch[t] = patchVertex[tri[0]] || patchVertex[tri[1]] || patchVertex[tri[2]];
+    }
+    const std::map<int, int> rim = patchRim(triangles, inPatch);
+    Vec3 centre;
+    if (!fanCentre(points, rim, centre))
+    {
+      continue;
+    }
+    std::vector<Triangle> healed;
+    std::vector<double> healedDensity;
+    double patchDensity = 0.0;
+    for (size_t t = 0; t < triangles.size(); ++t)
+    {
+      patchDensity = inPatch[t] ? std::max(patchDensity, density[t]) : patchDensity;
+      if (!inPatch[t])
+      {
+        healed.push_back(triangles[t]);
+        healedDensity.push_back(density[t]);
+      }
+    }
+    const int centreId = static_cast<int>(points.size());
+    for (const auto& [a, b] : rim)
+    {
+      healed.push_back({ a, b, centreId });
+      healedDensity.push_back(patchDensity);
+    }
+    points.push_back(centre);
+    triangles.swap(healed);
+    density.swap(healedDensity);
+    return;
+  }
+}
+
 struct SphereStaging
 {
   using Point = Vec3;
-  static constexpr bool MayFold = false;
-  static bool folded(const SphereParameterizationResult&) { return false; }
+  static bool folded(const SphereParameterizationResult& run)
+  {
+    const std::vector<Vec3>& x = run.startSphere;
+    const std::vector<Triangle>& triangles = run.conformal.surface.mesh.triangles;
+    return std::any_of(triangles.begin(), triangles.end(),
+      [&x](const Triangle& t)
+      { return !(sphericalTriangleArea(x[t[0]], x[t[1]], x[t[2]]) > 0.0); });
+  }
   static SphereSamplingStage sample(const SphereParameterizationResult& run,
     const std::vector<double>& density, const SamplerOptions& options)
   {
-    return runSphereSamplingStage(
-      run.startSphere, run.conformal.surface.mesh.triangles, density, options);
+    std::vector<Vec3> points = run.startSphere;
+    std::vector<Triangle> triangles = run.conformal.surface.mesh.triangles;
+    std::vector<double> values = density;
+    healFolds(points, triangles, values);
+    return runSphereSamplingStage(points, triangles, values, options);
   }
   static SphereTransportStage transport(const std::vector<Vec3>& diracs,
     const std::vector<double>& masses, const OTOptions& options, double maximumArcAngle)
@@ -392,7 +522,7 @@ std::string transportStage(
   compositionOptions.progress = keepGoing;
   const auto composed = Staging::compose(run, sampling, transport, diracs, compositionOptions);
   run.status.aborted = composed.status.aborted;
-  const std::string compositionError = compositionFailure(composed, Staging::MayFold);
+  const std::string compositionError = compositionFailure(composed);
   if (!compositionError.empty())
   {
     return compositionError;
@@ -410,7 +540,7 @@ void transportInStages(const AreaPreservingOptions& options, Run& run)
   run.startDensity = run.conformal.areaDensityPerTriangle;
   const auto keepGoing = [&options](double)
   { return !options.progress || options.progress("sampling", SamplingRange.start); };
-  // A stage that left a fold (DiskStaging::MayFold) is followed by another, which untangles it.
+  // A stage that left a fold is followed by another, which untangles it.
   const auto moreStages = [&run]
   {
     return rangeOf(run.startDensity) > CrowdedDensityRange ||
@@ -475,7 +605,8 @@ void warnAboutTheMap(Run& run, const char* where)
       if (warning.rfind("conformal map: ", 0) == 0 &&
         warning.find(" are flipped ") != std::string::npos)
       {
-        warning += " The area-preserving map has none: its composition untangled them.";
+        warning += std::string(warning.back() == '.' ? " " : ". ") +
+          "The area-preserving map has none: its composition untangled them.";
       }
     }
   }

@@ -110,7 +110,10 @@ SphereConformalStage runSphereConformalStage(
     return stage;
   }
   status.warnings = stage.map.status.warnings;
-  addConformalWarnings(stage.figures, "sphere", status);
+  if (stage.map.flippedTriangles == 0) // else the map's own warning says it
+  {
+    addConformalWarnings(stage.figures, "sphere", status);
+  }
   return stage;
 }
 
