@@ -1,8 +1,8 @@
 #include "Pipeline/AreaPreservingPipeline.h"
 
-#include "Common/DirectedEdges.h"
 #include "Common/Memory.h"
 #include "Common/SphericalGeometry.h"
+#include "Mesh/Folds.h"
 #include "Mesh/HoleFilling.h"
 #include "Transport/PlanarSource.h"
 
@@ -10,8 +10,6 @@
 #include <chrono>
 #include <cmath>
 #include <exception>
-#include <map>
-#include <set>
 #include <sstream>
 
 namespace otparam
@@ -211,63 +209,6 @@ std::vector<Triangle> diracTriangulation(
     .triangles;
 }
 
-// The triangles of positive area in a planar map, less those at a vertex where two fans of them
-// would meet (a pinch the sampler's domain cannot have): what a disk stage samples.
-std::vector<bool> unfoldedPart(const std::vector<Vec2>& uv, const std::vector<Triangle>& triangles)
-{
-  std::vector<bool> kept(triangles.size());
-  for (size_t t = 0; t < triangles.size(); ++t)
-  {
-    const Triangle& tri = triangles[t];
-    kept[t] = cross(uv[tri[1]] - uv[tri[0]], uv[tri[2]] - uv[tri[0]]) > 0.0;
-  }
-  bool pinched = std::find(kept.begin(), kept.end(), false) != kept.end();
-  while (pinched)
-  {
-    // A kept triangle's edge that no other kept triangle shares is on the domain's boundary; a
-    // vertex on more than two such edges pinches it.
-    std::vector<Triangle> keptTriangles;
-    for (size_t t = 0; t < triangles.size(); ++t)
-    {
-      if (kept[t])
-      {
-        keptTriangles.push_back(triangles[t]);
-      }
-    }
-    const auto edges = sortedDirectedEdges(keptTriangles);
-    std::vector<int> boundaryEdges(uv.size(), 0);
-    for (size_t e = 0; e < edges.size();)
-    {
-      size_t next = e + 1;
-      while (next < edges.size() && edges[next].first >> 1 == edges[e].first >> 1)
-      {
-        ++next;
-      }
-      if (next == e + 1)
-      {
-        const Triangle& tri = keptTriangles[edges[e].second / 3];
-        const int k = edges[e].second % 3;
-        ++boundaryEdges[tri[k]];
-        ++boundaryEdges[tri[(k + 1) % 3]];
-      }
-      e = next;
-    }
-    pinched = false;
-    for (size_t t = 0; t < triangles.size(); ++t)
-    {
-      for (int k = 0; kept[t] && k < 3; ++k)
-      {
-        if (boundaryEdges[triangles[t][k]] > 2)
-        {
-          kept[t] = false;
-          pinched = true;
-        }
-      }
-    }
-  }
-  return kept;
-}
-
 // What a staged transport does on each domain: sample the map run.startUv / run.startSphere,
 // transport from the uniform domain, compose, and adopt the composed map with its density.
 // A stage may fold: a finger crowded beyond double precision folds and collapses its tip in the
@@ -326,130 +267,6 @@ struct DiskStaging
   }
 };
 
-// The rim of the patch (the triangles inPatch), as directed edges a -> b (the patch on the
-// left), when it is one simple loop; empty otherwise.
-std::map<int, int> patchRim(
-  const std::vector<Triangle>& triangles, const std::vector<bool>& inPatch)
-{
-  std::set<std::pair<int, int>> edges;
-  for (size_t t = 0; t < triangles.size(); ++t)
-  {
-    for (int k = 0; inPatch[t] && k < 3; ++k)
-    {
-      edges.insert({ triangles[t][k], triangles[t][(k + 1) % 3] });
-    }
-  }
-  std::map<int, int> rim;
-  for (const auto& [a, b] : edges)
-  {
-    if (!edges.count({ b, a }) && !rim.emplace(a, b).second)
-    {
-      return {}; // a vertex where the rim touches itself
-    }
-  }
-  // One loop: following it from a rim vertex comes back after visiting every rim vertex.
-  std::size_t steps = 0;
-  for (int v = rim.empty() ? -1 : rim.begin()->first; steps < rim.size();)
-  {
-    const auto next = rim.find(v);
-    if (next == rim.end())
-    {
-      return {};
-    }
-    v = next->second;
-    ++steps;
-    if (v == rim.begin()->first)
-    {
-      break;
-    }
-  }
-  return steps == rim.size() ? rim : std::map<int, int>{};
-}
-
-// The centre on the sphere of a rim around which the fan (a, b, centre) is positive for every
-// rim edge a -> b, or false.
-bool fanCentre(const std::vector<Vec3>& points, const std::map<int, int>& rim, Vec3& centre)
-{
-  Vec3 sum{};
-  for (const auto& edge : rim)
-  {
-    sum = sum + points[edge.first];
-  }
-  if (rim.empty() || !(norm(sum) > 1e-3))
-  {
-    return false;
-  }
-  centre = normalized(sum);
-  return std::all_of(rim.begin(), rim.end(),
-    [&](const std::pair<const int, int>& edge)
-    { return sphericalTriangleArea(points[edge.first], points[edge.second], centre) > 0.0; });
-}
-
-// The sphere's sampler takes a closed mesh of positive triangles only. For a stage's sampling
-// alone, the patch around folded or degenerate triangles (the conformal sphere map crushes a
-// long finger's tip) is replaced by a fan from its rim's centre, the patch grown ring by ring
-// (up to 8) until its rim is one loop around which the fan is positive. When none is, the mesh
-// is left as it is and the sampler names the fold.
-void healFolds(
-  std::vector<Vec3>& points, std::vector<Triangle>& triangles, std::vector<double>& density)
-{
-  std::vector<bool> inPatch(triangles.size());
-  for (size_t t = 0; t < triangles.size(); ++t)
-  {
-    const Triangle& tri = triangles[t];
-    inPatch[t] = !(sphericalTriangleArea(points[tri[0]], points[tri[1]], points[tri[2]]) > 0.0);
-  }
-  if (std::find(inPatch.begin(), inPatch.end(), true) == inPatch.end())
-  {
-    return;
-  }
-  for (int ring = 0; ring < 8; ++ring)
-  {
-    // One more ring: every triangle touching a vertex of the patch.
-    std::vector<bool> patchVertex(points.size(), false);
-    for (size_t t = 0; t < triangles.size(); ++t)
-    {
-      for (int k = 0; inPatch[t] && k < 3; ++k)
-      {
-        patchVertex[triangles[t][k]] = true;
-      }
-    }
-    for (size_t t = 0; t < triangles.size(); ++t)
-    {
-      const Triangle& tri = triangles[t];
-      inPatch[t] = patchVertex[tri[0]] || patchVertex[tri[1]] || patchVertex[tri[2]];
-    }
-    const std::map<int, int> rim = patchRim(triangles, inPatch);
-    Vec3 centre;
-    if (!fanCentre(points, rim, centre))
-    {
-      continue;
-    }
-    std::vector<Triangle> healed;
-    std::vector<double> healedDensity;
-    double patchDensity = 0.0;
-    for (size_t t = 0; t < triangles.size(); ++t)
-    {
-      patchDensity = inPatch[t] ? std::max(patchDensity, density[t]) : patchDensity;
-      if (!inPatch[t])
-      {
-        healed.push_back(triangles[t]);
-        healedDensity.push_back(density[t]);
-      }
-    }
-    const int centreId = static_cast<int>(points.size());
-    for (const auto& [a, b] : rim)
-    {
-      healed.push_back({ a, b, centreId });
-      healedDensity.push_back(patchDensity);
-    }
-    points.push_back(centre);
-    triangles.swap(healed);
-    density.swap(healedDensity);
-    return;
-  }
-}
-
 struct SphereStaging
 {
   using Point = Vec3;
@@ -467,7 +284,7 @@ struct SphereStaging
     std::vector<Vec3> points = run.startSphere;
     std::vector<Triangle> triangles = run.conformal.surface.mesh.triangles;
     std::vector<double> values = density;
-    healFolds(points, triangles, values);
+    healSphereFolds(points, triangles, values);
     return runSphereSamplingStage(points, triangles, values, options);
   }
   static SphereTransportStage transport(const std::vector<Vec3>& diracs,

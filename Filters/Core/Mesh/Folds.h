@@ -1,0 +1,29 @@
+// Folds of a map, for the staged transport of a surface crowded beyond double precision
+// (Pipeline/AreaPreservingPipeline.cxx): a long finger's tip collapses and folds in the
+// conformal image, and a stage's sampler, which takes only a valid triangulation of its domain,
+// samples around the fold while the next stage untangles it.
+#ifndef OTPARAM_MESH_FOLDS_H
+#define OTPARAM_MESH_FOLDS_H
+
+#include "Common/Geometry.h"
+
+#include <vector>
+
+namespace otparam
+{
+
+// The triangles of positive area in a planar map, less those at a vertex where two fans of them
+// would meet (a pinch a sampler's domain cannot have): the unfolded part a disk stage samples.
+std::vector<bool> unfoldedPart(const std::vector<Vec2>& uv, const std::vector<Triangle>& triangles);
+
+// A sphere's sampler takes a closed mesh of positive triangles only: the patch around folded or
+// degenerate triangles is replaced by a fan from its rim's centre (a point appended to
+// `points`, density the patch's largest), the patch grown ring by ring (up to 8) until its rim
+// is one loop around which the fan is positive. When none is, the mesh is left as it is (the
+// sampler then names the fold).
+void healSphereFolds(
+  std::vector<Vec3>& points, std::vector<Triangle>& triangles, std::vector<double>& density);
+
+} // namespace otparam
+
+#endif
