@@ -5,85 +5,65 @@
 
 #include <algorithm>
 #include <map>
-#include <set>
+#include <utility>
 
 namespace otparam
 {
 
-std::vector<bool> unfoldedPart(const std::vector<Vec2>& uv, const std::vector<Triangle>& triangles)
+bool positive(const std::vector<Vec2>& uv, const Triangle& t)
 {
-  std::vector<bool> kept(triangles.size());
-  for (size_t t = 0; t < triangles.size(); ++t)
-  {
-    const Triangle& tri = triangles[t];
-    kept[t] = cross(uv[tri[1]] - uv[tri[0]], uv[tri[2]] - uv[tri[0]]) > 0.0;
-  }
-  bool pinched = std::find(kept.begin(), kept.end(), false) != kept.end();
-  while (pinched)
-  {
-    // A kept triangle's edge that no other kept triangle shares is on the domain's boundary; a
-    // vertex on more than two such edges pinches it.
-    std::vector<Triangle> keptTriangles;
-    for (size_t t = 0; t < triangles.size(); ++t)
-    {
-      if (kept[t])
-      {
-        keptTriangles.push_back(triangles[t]);
-      }
-    }
-    const auto edges = sortedDirectedEdges(keptTriangles);
-    std::vector<int> boundaryEdges(uv.size(), 0);
-    for (size_t e = 0; e < edges.size();)
-    {
-      size_t next = e + 1;
-      while (next < edges.size() && edges[next].first >> 1 == edges[e].first >> 1)
-      {
-        ++next;
-      }
-      if (next == e + 1)
-      {
-        const Triangle& tri = keptTriangles[edges[e].second / 3];
-        const int k = edges[e].second % 3;
-        ++boundaryEdges[tri[k]];
-        ++boundaryEdges[tri[(k + 1) % 3]];
-      }
-      e = next;
-    }
-    pinched = false;
-    for (size_t t = 0; t < triangles.size(); ++t)
-    {
-      for (int k = 0; kept[t] && k < 3; ++k)
-      {
-        if (boundaryEdges[triangles[t][k]] > 2)
-        {
-          kept[t] = false;
-          pinched = true;
-        }
-      }
-    }
-  }
-  return kept;
+  return cross(uv[t[1]] - uv[t[0]], uv[t[2]] - uv[t[0]]) > 0.0;
+}
+
+bool positive(const std::vector<Vec3>& x, const Triangle& t)
+{
+  return sphericalTriangleArea(x[t[0]], x[t[1]], x[t[2]]) > 0.0;
 }
 
 namespace
 {
-// The rim of the patch (the triangles inPatch), as directed edges a -> b (the patch on the
-// left), when it is one simple loop; empty otherwise.
+// The directed edges a -> b of the triangles inPatch that no other such triangle shares: the
+// patch's boundary, with the patch on the left.
+std::vector<std::pair<int, int>> boundaryEdges(
+  const std::vector<Triangle>& triangles, const std::vector<bool>& inPatch)
+{
+  std::vector<Triangle> patch;
+  for (size_t t = 0; t < triangles.size(); ++t)
+  {
+    if (inPatch[t])
+    {
+      patch.push_back(triangles[t]);
+    }
+  }
+  const auto edges = sortedDirectedEdges(patch);
+  std::vector<std::pair<int, int>> boundary;
+  for (size_t e = 0; e < edges.size();)
+  {
+    size_t next = e + 1;
+    while (next < edges.size() && edges[next].first >> 1 == edges[e].first >> 1)
+    {
+      ++next;
+    }
+    if (next == e + 1)
+    {
+      const Triangle& tri = patch[edges[e].second / 3];
+      const int k = edges[e].second % 3;
+      boundary.emplace_back(tri[k], tri[(k + 1) % 3]);
+    }
+    e = next;
+  }
+  return boundary;
+}
+
+// The rim of the patch (the triangles inPatch) as a map a -> b, when it is one simple loop;
+// empty otherwise.
 std::map<int, int> patchRim(
   const std::vector<Triangle>& triangles, const std::vector<bool>& inPatch)
 {
-  std::set<std::pair<int, int>> edges;
-  for (size_t t = 0; t < triangles.size(); ++t)
-  {
-    for (int k = 0; inPatch[t] && k < 3; ++k)
-    {
-      edges.insert({ triangles[t][k], triangles[t][(k + 1) % 3] });
-    }
-  }
   std::map<int, int> rim;
-  for (const auto& [a, b] : edges)
+  for (const auto& [a, b] : boundaryEdges(triangles, inPatch))
   {
-    if (!edges.count({ b, a }) && !rim.emplace(a, b).second)
+    if (!rim.emplace(a, b).second)
     {
       return {}; // a vertex where the rim touches itself
     }
@@ -127,14 +107,46 @@ bool fanCentre(const std::vector<Vec3>& points, const std::map<int, int>& rim, V
 }
 } // namespace
 
+std::vector<bool> unfoldedPart(const std::vector<Vec2>& uv, const std::vector<Triangle>& triangles)
+{
+  std::vector<bool> kept(triangles.size());
+  for (size_t t = 0; t < triangles.size(); ++t)
+  {
+    kept[t] = positive(uv, triangles[t]);
+  }
+  bool pinched = std::find(kept.begin(), kept.end(), false) != kept.end();
+  while (pinched)
+  {
+    // A vertex on more than two boundary edges of the kept triangles pinches their domain.
+    std::vector<int> boundaryEdgesAt(uv.size(), 0);
+    for (const auto& [a, b] : boundaryEdges(triangles, kept))
+    {
+      ++boundaryEdgesAt[a];
+      ++boundaryEdgesAt[b];
+    }
+    pinched = false;
+    for (size_t t = 0; t < triangles.size(); ++t)
+    {
+      for (int k = 0; kept[t] && k < 3; ++k)
+      {
+        if (boundaryEdgesAt[triangles[t][k]] > 2)
+        {
+          kept[t] = false;
+          pinched = true;
+        }
+      }
+    }
+  }
+  return kept;
+}
+
 void healSphereFolds(
   std::vector<Vec3>& points, std::vector<Triangle>& triangles, std::vector<double>& density)
 {
   std::vector<bool> inPatch(triangles.size());
   for (size_t t = 0; t < triangles.size(); ++t)
   {
-    const Triangle& tri = triangles[t];
-    inPatch[t] = !(sphericalTriangleArea(points[tri[0]], points[tri[1]], points[tri[2]]) > 0.0);
+    inPatch[t] = !positive(points, triangles[t]);
   }
   if (std::find(inPatch.begin(), inPatch.end(), true) == inPatch.end())
   {

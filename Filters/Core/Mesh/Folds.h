@@ -12,6 +12,11 @@
 namespace otparam
 {
 
+// A triangle of positive area in a planar map, or on the sphere (its spherical area, which the
+// sphere's sampler checks).
+bool positive(const std::vector<Vec2>& uv, const Triangle& t);
+bool positive(const std::vector<Vec3>& x, const Triangle& t);
+
 // The triangles of positive area in a planar map, less those at a vertex where two fans of them
 // would meet (a pinch a sampler's domain cannot have): the unfolded part a disk stage samples.
 std::vector<bool> unfoldedPart(const std::vector<Vec2>& uv, const std::vector<Triangle>& triangles);

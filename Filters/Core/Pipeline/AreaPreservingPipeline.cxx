@@ -1,7 +1,6 @@
 #include "Pipeline/AreaPreservingPipeline.h"
 
 #include "Common/Memory.h"
-#include "Common/SphericalGeometry.h"
 #include "Mesh/Folds.h"
 #include "Mesh/HoleFilling.h"
 #include "Transport/PlanarSource.h"
@@ -223,11 +222,9 @@ struct DiskStaging
   using Point = Vec2;
   static bool folded(const AreaPreservingResult& run)
   {
-    const std::vector<Vec2>& uv = run.startUv;
     const std::vector<Triangle>& triangles = run.conformal.surface.mesh.triangles;
     return std::any_of(triangles.begin(), triangles.end(),
-      [&uv](const Triangle& t)
-      { return !(cross(uv[t[1]] - uv[t[0]], uv[t[2]] - uv[t[0]]) > 0.0); });
+      [&run](const Triangle& t) { return !positive(run.startUv, t); });
   }
   static SamplingStage sample(const AreaPreservingResult& run, const std::vector<double>& density,
     const SamplerOptions& options)
@@ -272,11 +269,9 @@ struct SphereStaging
   using Point = Vec3;
   static bool folded(const SphereParameterizationResult& run)
   {
-    const std::vector<Vec3>& x = run.startSphere;
     const std::vector<Triangle>& triangles = run.conformal.surface.mesh.triangles;
     return std::any_of(triangles.begin(), triangles.end(),
-      [&x](const Triangle& t)
-      { return !(sphericalTriangleArea(x[t[0]], x[t[1]], x[t[2]]) > 0.0); });
+      [&run](const Triangle& t) { return !positive(run.startSphere, t); });
   }
   static SphereSamplingStage sample(const SphereParameterizationResult& run,
     const std::vector<double>& density, const SamplerOptions& options)

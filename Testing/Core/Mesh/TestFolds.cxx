@@ -19,11 +19,6 @@ namespace
 {
 constexpr double Pi = 3.14159265358979323846;
 
-bool positive(const std::vector<Vec2>& uv, const Triangle& t)
-{
-  return cross(uv[t[1]] - uv[t[0]], uv[t[2]] - uv[t[0]]) > 0.0;
-}
-
 // The most boundary edges (edges of one kept triangle) at any vertex: 2 on a domain without
 // pinches.
 int mostBoundaryEdgesAtAVertex(
