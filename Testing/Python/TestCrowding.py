@@ -2,19 +2,24 @@
 crowded by the conformal map into a part of the disk whose area density grows like
 exp(2 L / rho). One transport converges while that range is below ~3e12 (L / rho = 14) and
 stopped at its start beyond; the disk map now transports in stages above 1e12 (field data
-TransportStages). Measured with default properties: converged with no flip up to L / rho = 70
-(exp(140) = 6e60 in theory; 6 stages; mean |log area ratio| 0.003 at L / rho = 2, 0.04-0.05 at
-14-20, 0.08 at 40, 0.10-0.12 at 50, 0.16 at 60, 0.17 at 70; at L / rho = 20 it moves with the
-sample set: 0.045-0.057 for 3000-6000 samples, hence a bound of 0.06 there). L / rho = 50
+TransportStages). Measured with default properties: converged with no flip up to L / rho = 90
+(exp(180) = 1.5e78 in theory; 7 stages; mean |log area ratio| 0.003 at L / rho = 2, 0.031 at
+14, 0.037 at 20, 0.049 at 40, 0.061 at 50, 0.081 at 60, 0.098 at 70, 0.081 at 80, 0.17 at
+90). Since 2026-11-27 a stage whose start is unfolded corrects its map's areas towards its
+clamped density's shares; before, the stages' mesh-scale errors piled up (0.041 at 14, 0.045 at
+20, 0.083 at 40, 0.10 at 50, 0.155 at 60, 0.171 at 70, one stage more at 60 and 70) and at 80
+the last transport started from triangles crushed 1e8-fold between sound ones: 3963 flipped
+triangles and a warning. L / rho = 50
 needs the composition's re-embedding of collapsed patches: without it the finger's crushed
 images stayed folded and the user got an error. From L / rho = 60 the conformal image itself
 folds the finger's tip (222 triangles flipped at 60, 1609 at 70: coordinates ~1e-17 apart); a
 stage then samples the unfolded part and the next one untangles the fold at the scale the
-stage gave the finger (until 2026-11-27 the first stage's sampling failed at 60). At 80 the
-stages leave a map whose last composition cannot be untangled: the user gets the map with a
-warning that names the crowding and what to do; at 100 a stage's sampling fails, and the error
-names the crowding, the stage that failed and what to do, never only a solver's state. The
-same finger on a closed surface goes to the sphere, staged the same way, up to L / rho = 36."""
+stage gave the finger (until 2026-11-27 the first stage's sampling failed at 60). At 95 and
+100 a stage's sampling fails (the unfolded part's rim around the fold needs more than 70000
+boundary samples), and the error names the crowding, the stage that failed and what to do,
+never only a solver's state. The same finger on a closed surface goes to the sphere, staged
+the same way, up to L / rho = 36 (2 stages, 0.023; 3 stages and 0.028 before the stages'
+correction)."""
 
 import math
 
@@ -88,8 +93,9 @@ def run(length_over_radius, closed=False):
     return fig, errors, warnings
 
 
-for length, stages, area in ((2, 0, 0.01), (10, 0, 0.05), (14, 1, 0.05), (20, 1, 0.06),
-                             (40, 3, 0.1), (50, 4, 0.13), (60, 5, 0.2), (70, 6, 0.2)):
+for length, stages, area in ((2, 0, 0.01), (10, 0, 0.05), (14, 1, 0.045), (20, 1, 0.05),
+                             (40, 3, 0.07), (50, 4, 0.08), (60, 4, 0.11), (70, 5, 0.13),
+                             (80, 7, 0.11), (90, 7, 0.22)):
     fig, errors, warnings = run(length)
     # From 60 the conformal map's own image folds (it says so, and that the map does not).
     folds = length >= 60
@@ -106,13 +112,6 @@ for length, stages, area in ((2, 0, 0.01), (10, 0, 0.05), (14, 1, 0.05), (20, 1,
         check(fig["ConformalMaximumAbsLogAreaRatio"] >= 99.0,
               "L/rho 50: the conformal area density spans e^99")
 
-fig, errors, warnings = run(80)
-text = warnings.text().lower()
-check(not errors.messages and fig["FlippedTriangles"] > 0 and "flipped in the disk:" in text
-      and "crowds part of the surface beyond what" in text and "cut the surface open" in text,
-      f"L/rho 80: the map comes with a warning that names its flips, the crowding and what to do "
-      f"({warnings.text()})")
-
 fig, errors, warnings = run(100)
 text = errors.text().lower()
 check(not fig and "crowds part of the surface" in text and "area density spans" in text
@@ -127,7 +126,7 @@ check(not fig and "crowds part of the surface" in text and "area density spans" 
 # samples the sphere with each such patch replaced by a fan from its rim's centre and the next
 # one untangles it (until 2026-11-27 the first stage's sampling failed from 33 on). At 38-40 the
 # first stage's transport does not converge.
-for length, stages, area in ((10, 0, 0.03), (20, 1, 0.03), (30, 2, 0.04), (36, 3, 0.04)):
+for length, stages, area in ((10, 0, 0.03), (20, 1, 0.03), (30, 2, 0.03), (36, 2, 0.03)):
     fig, errors, warnings = run(length, closed=True)
     folds = length > 30
     check(not errors.messages

@@ -6,6 +6,7 @@
 #define OTPARAM_COMPOSITION_COMPOSITION_H
 
 #include "Common/Geometry.h"
+#include "Composition/CompositionOptions.h"
 #include "Mesh/SurfaceMesh.h"
 
 #include <algorithm>
@@ -13,6 +14,7 @@
 #include <cmath>
 #include <cstdint>
 #include <numeric>
+#include <string>
 #include <vector>
 
 namespace otparam
@@ -84,6 +86,35 @@ inline std::vector<double> surfaceAreaFractions(const SurfaceMesh& surface)
     f /= total;
   }
   return fraction;
+}
+
+// The shares the area correction aims at: the options' targets, or the surface's own.
+inline std::vector<double> targetAreaShares(
+  const SurfaceMesh& surface, const CompositionOptions& options)
+{
+  return options.targetAreaShares.empty() ? surfaceAreaFractions(surface)
+                                          : options.targetAreaShares;
+}
+
+// "" or what is wrong with the options' target shares (one positive value per triangle).
+inline std::string checkTargetAreaShares(
+  const SurfaceMesh& surface, const CompositionOptions& options)
+{
+  const std::vector<double>& shares = options.targetAreaShares;
+  if (shares.empty())
+  {
+    return {};
+  }
+  if (shares.size() != surface.triangles.size())
+  {
+    return "the area correction has " + std::to_string(shares.size()) + " target shares for " +
+      std::to_string(surface.triangles.size()) + " triangles";
+  }
+  const auto bad = std::find_if(
+    shares.begin(), shares.end(), [](double s) { return !(s > 0.0) || !std::isfinite(s); });
+  return bad == shares.end() ? std::string()
+                             : "the area correction's target share of triangle " +
+      std::to_string(bad - shares.begin()) + " is not a positive number";
 }
 
 inline double meanAbsLogAreaRatio(const std::vector<Triangle>& triangles,

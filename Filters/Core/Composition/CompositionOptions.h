@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <functional>
+#include <vector>
 
 namespace otparam
 {
@@ -23,6 +24,9 @@ struct CompositionOptions
   // first this many triangles, 0 = all: with holes filled, the input's own triangles come first
   // and the fill after them (the fill is corrected with the rest, but is not the user's).
   std::size_t measuredTriangles = 0;
+  // The share of the domain each triangle's area is corrected towards (summing to 1); empty:
+  // its share of the surface. A staged transport's stage aims at its clamped density's shares.
+  std::vector<double> targetAreaShares;
   // Called with the fraction done; returning false aborts.
   std::function<bool(double)> progress;
 };

@@ -170,6 +170,10 @@ CompositionResult composeWithInverseTransport(const SurfaceMesh& surface,
 {
   CompositionResult result;
   result.status.error = checkCompositionInputs(surface, conformalUv, samples, sampleImages);
+  if (result.status.error.empty())
+  {
+    result.status.error = checkTargetAreaShares(surface, options);
+  }
   if (!result.status.error.empty())
   {
     return result;
@@ -205,7 +209,7 @@ CompositionResult composeWithInverseTransport(const SurfaceMesh& surface,
     result.untangledVertices = Untangler(surface, boundaryLoop, stars).run(result.uv);
   }
   result.secondsUntangling = seconds(start);
-  const std::vector<double> surfaceFraction = surfaceAreaFractions(surface);
+  const std::vector<double> surfaceFraction = targetAreaShares(surface, options);
   result.meanAbsLogAreaRatioInterpolated =
     measuredMeanAbsLogAreaRatio(surface, result.uv, surfaceFraction, options.measuredTriangles);
   result.meanAbsLogAreaRatio = result.meanAbsLogAreaRatioInterpolated;

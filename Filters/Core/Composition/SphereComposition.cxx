@@ -239,12 +239,14 @@ std::int64_t untangleOnSphere(
 }
 } // namespace
 
-double sphereMeanAbsLogAreaRatio(
-  const SurfaceMesh& surface, const std::vector<Vec3>& sphere, std::size_t measured)
+namespace
 {
-  const std::vector<double> fraction = composition::surfaceAreaFractions(surface);
-  const std::size_t count = measured == 0 ? fraction.size() : std::min(measured, fraction.size());
-  // With a hole fill (measured > 0) the surface shares are renormalized over the measured
+// The area-weighted mean |log area ratio| of the sphere map against `fraction` (shares summing
+// to 1) over the first `count` triangles.
+double meanAbsLogAreaRatioAgainst(const SurfaceMesh& surface, const std::vector<Vec3>& sphere,
+  const std::vector<double>& fraction, std::size_t count)
+{
+  // With a hole fill (count < all) the surface shares are renormalized over the measured
   // triangles, while the sphere's stay of 4 pi, as param_metrics.py --sphere scores the output
   // (the fill's share of the sphere then shows as a uniform error of |log(1 - share)|).
   double surfaceShare = 1.0;
@@ -263,6 +265,15 @@ double sphereMeanAbsLogAreaRatio(
     mean += fraction[t] / surfaceShare * std::abs(std::log(ratio));
   }
   return mean;
+}
+} // namespace
+
+double sphereMeanAbsLogAreaRatio(
+  const SurfaceMesh& surface, const std::vector<Vec3>& sphere, std::size_t measured)
+{
+  const std::vector<double> fraction = composition::surfaceAreaFractions(surface);
+  const std::size_t count = measured == 0 ? fraction.size() : std::min(measured, fraction.size());
+  return meanAbsLogAreaRatioAgainst(surface, sphere, fraction, count);
 }
 
 namespace
@@ -306,12 +317,13 @@ template <class Report>
 bool correctOnSphere(const SurfaceMesh& surface, const composition::VertexStars& stars,
   const CompositionOptions& options, const Report& report, SphereCompositionResult& result)
 {
-  const std::vector<double> surfaceFraction = composition::surfaceAreaFractions(surface);
+  const std::vector<double> targets = composition::targetAreaShares(surface, options);
   composition::AreaCorrectionOn<composition::SphereGeometry> correction(
-    surface, {}, stars, surfaceFraction);
+    surface, {}, stars, targets);
   if (!composition::correctAreas(
         correction, result.sphere, options,
-        [&](const std::vector<Vec3>& sphere) { return sphereMeanAbsLogAreaRatio(surface, sphere); },
+        [&](const std::vector<Vec3>& sphere)
+        { return meanAbsLogAreaRatioAgainst(surface, sphere, targets, targets.size()); },
         report, result.correctionSweeps, result.meanAbsLogAreaRatio))
   {
     return false;
@@ -333,6 +345,11 @@ SphereCompositionResult composeOnSphere(const SurfaceMesh& surface,
   auto report = [&options](double fraction)
   { return !options.progress || options.progress(fraction); };
   SphereCompositionResult result;
+  result.status.error = composition::checkTargetAreaShares(surface, options);
+  if (!result.status.error.empty())
+  {
+    return result;
+  }
   auto t0 = Clock::now();
   if (!interpolateOnSphere(conformal, samples, sampleTriangles, sampleImages, report, result))
   {

@@ -1,6 +1,7 @@
 #include "Pipeline/AreaPreservingPipeline.h"
 
 #include "Common/Memory.h"
+#include "Common/SphericalGeometry.h"
 #include "Mesh/Folds.h"
 #include "Mesh/HoleFilling.h"
 #include "Transport/PlanarSource.h"
@@ -9,6 +10,7 @@
 #include <chrono>
 #include <cmath>
 #include <exception>
+#include <numeric>
 #include <sstream>
 
 namespace otparam
@@ -149,10 +151,10 @@ constexpr double CrowdedDensityRange = 1e12;
 // its start beyond (Testing/Python/TestCrowding.py, TestCrowdingSphere.py). Above
 // CrowdedDensityRange the transport runs in stages, on either domain: each samples the current
 // map's density clamped to StageDensityRange times its smallest value, transports, and composes
-// without the area correction (the targets are those of the clamped density); the clamped part
-// then gets up to StageDensityRange times its share of the domain, so each stage divides the
-// range by about that, and the last transport, the usual one, starts from a map whose density
-// it resolves.
+// with the area correction aiming at the clamped density's shares (stageAreaShares); the
+// clamped part then gets up to StageDensityRange times its share of the domain, so each stage
+// divides the range by about that, and the last transport, the usual one, starts from a map
+// whose density it resolves.
 constexpr double StageDensityRange = 1e10;
 constexpr int MaximumTransportStages = 30; // 1e300 / 1e10^30: every range double holds
 
@@ -215,7 +217,7 @@ std::vector<Triangle> diracTriangulation(
 // samples around the fold (the disk's unfolded part, the sphere with the fold healed by a fan),
 // transports, and leaves the fold to the next stage's composition, which untangles it at the
 // wider scale the stage gave the finger (TestCrowding: converged with no flip up to L / rho =
-// 70, e^140, on the disk, 36 on the sphere, where a folded stage ended in an error from 60 and
+// 90, e^180, on the disk, 36 on the sphere, where a folded stage ended in an error from 60 and
 // 33).
 struct DiskStaging
 {
@@ -225,6 +227,11 @@ struct DiskStaging
     const std::vector<Triangle>& triangles = run.conformal.surface.mesh.triangles;
     return std::any_of(triangles.begin(), triangles.end(),
       [&run](const Triangle& t) { return !positive(run.startUv, t); });
+  }
+  static double area(const AreaPreservingResult& run, const Triangle& t)
+  {
+    const Vec2 a = run.startUv[t[0]];
+    return 0.5 * cross(run.startUv[t[1]] - a, run.startUv[t[2]] - a);
   }
   static SamplingStage sample(const AreaPreservingResult& run, const std::vector<double>& density,
     const SamplerOptions& options)
@@ -273,6 +280,11 @@ struct SphereStaging
     return std::any_of(triangles.begin(), triangles.end(),
       [&run](const Triangle& t) { return !positive(run.startSphere, t); });
   }
+  static double area(const SphereParameterizationResult& run, const Triangle& t)
+  {
+    return sphericalTriangleArea(
+      run.startSphere[t[0]], run.startSphere[t[1]], run.startSphere[t[2]]);
+  }
   static SphereSamplingStage sample(const SphereParameterizationResult& run,
     const std::vector<double>& density, const SamplerOptions& options)
   {
@@ -303,6 +315,28 @@ struct SphereStaging
   }
 };
 
+// The shares of the domain a stage's transport gives the triangles of an unfolded start map:
+// each its clamped density times its area there. The stage's area correction aims at them:
+// without it the compositions' mesh-scale errors piled up from stage to stage (TestCrowding's
+// finger at L / rho = 80: the last transport started from a map with triangles crushed 1e8-fold
+// between sound ones, and its map kept 3963 flipped triangles; now none).
+template <class Staging, class Run>
+std::vector<double> stageAreaShares(const Run& run, const std::vector<double>& clamped)
+{
+  const std::vector<Triangle>& triangles = run.conformal.surface.mesh.triangles;
+  std::vector<double> shares(triangles.size());
+  for (size_t t = 0; t < triangles.size(); ++t)
+  {
+    shares[t] = clamped[t] * Staging::area(run, triangles[t]);
+  }
+  const double total = std::accumulate(shares.begin(), shares.end(), 0.0);
+  for (double& share : shares)
+  {
+    share /= total;
+  }
+  return shares;
+}
+
 // One stage: the start map moved by the transport of its clamped density. "" or the error.
 template <class Staging, class Run>
 std::string transportStage(
@@ -310,7 +344,12 @@ std::string transportStage(
 {
   SamplerOptions samplerOptions = options.sampling;
   samplerOptions.progress = keepGoing;
-  const auto sampling = Staging::sample(run, clampedForStage(run.startDensity), samplerOptions);
+  const std::vector<double> clamped = clampedForStage(run.startDensity);
+  // A folded start has no areas to aim at; its stage only widens the crowd, and the next one,
+  // once the fold is untangled, corrects (correcting around a fold left the fold's rim too
+  // long for a stage's sampler at L / rho = 80).
+  const bool correct = !Staging::folded(run);
+  const auto sampling = Staging::sample(run, clamped, samplerOptions);
   if (!sampling.status.ok())
   {
     run.status.aborted = sampling.status.aborted;
@@ -330,7 +369,12 @@ std::string transportStage(
     return transportError;
   }
   CompositionOptions compositionOptions = options.composition;
-  compositionOptions.correctAreas = false;
+  compositionOptions.correctAreas = correct;
+  compositionOptions.measuredTriangles = 0;
+  if (correct)
+  {
+    compositionOptions.targetAreaShares = stageAreaShares<Staging>(run, clamped);
+  }
   compositionOptions.progress = keepGoing;
   const auto composed = Staging::compose(run, sampling, transport, diracs, compositionOptions);
   run.status.aborted = composed.status.aborted;

@@ -340,9 +340,11 @@ TEST(Pipeline, StagedTransportWidensACrowdedFinger)
 }
 
 // At L / rho = 60 the conformal image folds the finger's tip (222 triangles): the stages sample
-// around the fold and untangle it later (before 2026-11-27 the first stage failed there).
+// around the fold and untangle it later (before 2026-11-27 the first stage failed there). Once
+// unfolded, a stage corrects its map's areas towards its clamped density's shares (without it:
+// 5 stages and mean |log area ratio| 0.155; now 4 and 0.081).
 TEST(Pipeline, StagedTransportGetsAroundAFoldedFinger)
 {
-  expectStagedMap(60.0, 5, 0.2, true);
+  expectStagedMap(60.0, 4, 0.11, true);
 }
 } // namespace otparam
