@@ -226,6 +226,7 @@ void AddUnreferencedNote(const otparam::CompactedMesh& domain, otparam::Status& 
   }
   if (!status.error.empty())
   {
+    status.error += status.error.back() == '.' ? "" : ".";
     status.error += " Point ids here count only the input points used by triangles.";
   }
   std::ostringstream msg;

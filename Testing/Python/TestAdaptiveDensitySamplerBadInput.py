@@ -223,6 +223,14 @@ def overlapping_triangle():
     return mesh(grid_points(), grid_triangles() + [grid_triangles()[0]])
 
 
+def crossing_triangle():
+    # A triangle with points of its own laid across the grid's corner: no edge shared, but the
+    # boundary crosses itself (CGAL's mesher crashed on such a domain).
+    points = grid_points() + [(0.5, 0.5, 0.0), (1.5, 0.5, 0.0), (0.5, 1.5, 0.0)]
+    n = len(grid_points())
+    return mesh(points, grid_triangles() + [(n, n + 1, n + 2)])
+
+
 def zero_area():
     # Triangle (0, 1, 2) of three points on the bottom edge.
     return mesh(grid_points(), grid_triangles() + [(0, 1, 2)])
@@ -259,6 +267,8 @@ CASES = [
     ("two squares touching at a corner", bow_tie(), {},
      ["not supported", "touches itself"]),
     ("overlapping triangles", overlapping_triangle(), {}, ["not supported", "overlap"]),
+    ("a triangle across others", crossing_triangle(), {},
+     ["not supported", "boundary crosses itself", "triangles overlap"]),
     ("zero-area triangle", zero_area(), {}, ["not supported", "triangle 32", "zero area"]),
     # -- the density
     ("density array missing", without_density(), {},

@@ -2,10 +2,10 @@
 crowded by the conformal map into a part of the disk whose area density grows like
 exp(2 L / rho). One transport converges while that range is below ~3e12 (L / rho = 14) and
 stopped at its start beyond; the disk map now transports in stages above 1e12 (field data
-TransportStages). Measured with default properties: converged with no flip up to L / rho = 90
-(exp(180) = 1.5e78 in theory; 7 stages; mean |log area ratio| 0.003 at L / rho = 2, 0.031 at
-14, 0.037 at 20, 0.049 at 40, 0.061 at 50, 0.081 at 60, 0.098 at 70, 0.081 at 80, 0.17 at
-90). Since 2026-11-27 a stage whose start is unfolded corrects its map's areas towards its
+TransportStages). Measured with default properties: converged with no flip up to L / rho = 95
+(exp(190) = 3.4e82 in theory; 8 stages; mean |log area ratio| 0.003 at L / rho = 2, 0.031 at
+14, 0.037 at 20, 0.049 at 40, 0.061 at 50, 0.081 at 60, 0.098 at 70, 0.081 at 80, 0.091 at
+85, 0.17 at 90, 0.13 at 95). Since 2026-11-27 a stage whose start is unfolded corrects its map's areas towards its
 clamped density's shares; before, the stages' mesh-scale errors piled up (0.041 at 14, 0.045 at
 20, 0.083 at 40, 0.10 at 50, 0.155 at 60, 0.171 at 70, one stage more at 60 and 70) and at 80
 the last transport started from triangles crushed 1e8-fold between sound ones: 3963 flipped
@@ -14,10 +14,12 @@ needs the composition's re-embedding of collapsed patches: without it the finger
 images stayed folded and the user got an error. From L / rho = 60 the conformal image itself
 folds the finger's tip (222 triangles flipped at 60, 1609 at 70: coordinates ~1e-17 apart); a
 stage then samples the unfolded part and the next one untangles the fold at the scale the
-stage gave the finger (until 2026-11-27 the first stage's sampling failed at 60). At 95 and
-100 a stage's sampling fails (the unfolded part's rim around the fold needs more than 70000
-boundary samples), and the error names the crowding, the stage that failed and what to do,
-never only a solver's state. The same finger on a closed surface goes to the sphere, staged
+stage gave the finger (until 2026-11-27 the first stage's sampling failed at 60). At 85 and 95
+that unfolded part's boundary crosses itself (positive triangles lie across the fold), and the
+stages run again on the unfolded parts peeled of them. At 100 a stage's sampling fails (its
+domain is too fine for double precision), and the error names the crowding, the stage that
+failed and what to do, never only a solver's state (until 2026-11-27, with the peeling, CGAL's
+mesher crashed there). The same finger on a closed surface goes to the sphere, staged
 the same way, up to L / rho = 36 (2 stages, 0.023; 3 stages and 0.028 before the stages'
 correction)."""
 
@@ -95,7 +97,7 @@ def run(length_over_radius, closed=False):
 
 for length, stages, area in ((2, 0, 0.01), (10, 0, 0.05), (14, 1, 0.045), (20, 1, 0.05),
                              (40, 3, 0.07), (50, 4, 0.08), (60, 4, 0.11), (70, 5, 0.13),
-                             (80, 7, 0.11), (90, 7, 0.22)):
+                             (80, 7, 0.11), (95, 8, 0.18)):
     fig, errors, warnings = run(length)
     # From 60 the conformal map's own image folds (it says so, and that the map does not).
     folds = length >= 60

@@ -1,6 +1,7 @@
 #include "Mesh/Folds.h"
 
 #include "Common/DirectedEdges.h"
+#include "Common/SegmentCrossings.h"
 #include "Common/SphericalGeometry.h"
 
 #include <algorithm>
@@ -23,16 +24,18 @@ bool positive(const std::vector<Vec3>& x, const Triangle& t)
 namespace
 {
 // The directed edges a -> b of the triangles inPatch that no other such triangle shares: the
-// patch's boundary, with the patch on the left.
-std::vector<std::pair<int, int>> boundaryEdges(
-  const std::vector<Triangle>& triangles, const std::vector<bool>& inPatch)
+// patch's boundary, with the patch on the left; `owners` (when given) gets each edge's triangle.
+std::vector<std::pair<int, int>> boundaryEdges(const std::vector<Triangle>& triangles,
+  const std::vector<bool>& inPatch, std::vector<int>* owners = nullptr)
 {
   std::vector<Triangle> patch;
+  std::vector<int> patchIds;
   for (size_t t = 0; t < triangles.size(); ++t)
   {
     if (inPatch[t])
     {
       patch.push_back(triangles[t]);
+      patchIds.push_back(static_cast<int>(t));
     }
   }
   const auto edges = sortedDirectedEdges(patch);
@@ -49,6 +52,10 @@ std::vector<std::pair<int, int>> boundaryEdges(
       const Triangle& tri = patch[edges[e].second / 3];
       const int k = edges[e].second % 3;
       boundary.emplace_back(tri[k], tri[(k + 1) % 3]);
+      if (owners)
+      {
+        owners->push_back(patchIds[edges[e].second / 3]);
+      }
     }
     e = next;
   }
@@ -107,18 +114,18 @@ bool fanCentre(const std::vector<Vec3>& points, const std::map<int, int>& rim, V
 }
 } // namespace
 
-std::vector<bool> unfoldedPart(const std::vector<Vec2>& uv, const std::vector<Triangle>& triangles)
+namespace
 {
-  std::vector<bool> kept(triangles.size());
-  for (size_t t = 0; t < triangles.size(); ++t)
-  {
-    kept[t] = positive(uv, triangles[t]);
-  }
+// Drops the kept triangles at a vertex where two fans of them meet (a pinch a sampler's
+// domain cannot have), until there is none.
+void dropPinches(
+  const std::vector<Triangle>& triangles, std::size_t points, std::vector<bool>& kept)
+{
   bool pinched = std::find(kept.begin(), kept.end(), false) != kept.end();
   while (pinched)
   {
     // A vertex on more than two boundary edges of the kept triangles pinches their domain.
-    std::vector<int> boundaryEdgesAt(uv.size(), 0);
+    std::vector<int> boundaryEdgesAt(points, 0);
     for (const auto& [a, b] : boundaryEdges(triangles, kept))
     {
       ++boundaryEdgesAt[a];
@@ -136,6 +143,50 @@ std::vector<bool> unfoldedPart(const std::vector<Vec2>& uv, const std::vector<Tr
         }
       }
     }
+  }
+}
+
+// Drops the kept triangles whose boundary edges cross other boundary edges (positive triangles
+// overlapping across a fold), and any pinch that leaves; crossings left after MaximumPeels
+// rounds, the sampler names.
+void peelCrossings(
+  const std::vector<Vec2>& uv, const std::vector<Triangle>& triangles, std::vector<bool>& kept)
+{
+  constexpr int MaximumPeels = 64;
+  for (int peel = 0; peel < MaximumPeels; ++peel)
+  {
+    std::vector<int> owners;
+    const std::vector<std::pair<int, int>> edges = boundaryEdges(triangles, kept, &owners);
+    const std::vector<std::pair<int, int>> crossings = crossingSegments(uv, edges);
+    if (crossings.empty())
+    {
+      return;
+    }
+    for (const auto& [e, f] : crossings)
+    {
+      kept[owners[e]] = kept[owners[f]] = false;
+    }
+    dropPinches(triangles, uv.size(), kept);
+  }
+}
+} // namespace
+
+std::vector<bool> unfoldedPart(
+  const std::vector<Vec2>& uv, const std::vector<Triangle>& triangles, bool peel)
+{
+  std::vector<bool> kept(triangles.size());
+  for (size_t t = 0; t < triangles.size(); ++t)
+  {
+    kept[t] = positive(uv, triangles[t]);
+  }
+  if (std::find(kept.begin(), kept.end(), false) == kept.end())
+  {
+    return kept; // an unfolded map is kept whole
+  }
+  dropPinches(triangles, uv.size(), kept);
+  if (peel)
+  {
+    peelCrossings(uv, triangles, kept);
   }
   return kept;
 }

@@ -19,7 +19,11 @@ bool positive(const std::vector<Vec3>& x, const Triangle& t);
 
 // The triangles of positive area in a planar map, less those at a vertex where two fans of them
 // would meet (a pinch a sampler's domain cannot have): the unfolded part a disk stage samples.
-std::vector<bool> unfoldedPart(const std::vector<Vec2>& uv, const std::vector<Triangle>& triangles);
+// With `peel`, also, round by round, those whose boundary edges cross others (positive
+// triangles overlapping across the fold; a sampler refuses a boundary that crosses itself). An
+// unfolded map is kept whole.
+std::vector<bool> unfoldedPart(
+  const std::vector<Vec2>& uv, const std::vector<Triangle>& triangles, bool peel = false);
 
 // A sphere's sampler takes a closed mesh of positive triangles only: the patch around folded or
 // degenerate triangles is replaced by a fan from its rim's centre (a point appended to

@@ -217,7 +217,7 @@ std::vector<Triangle> diracTriangulation(
 // samples around the fold (the disk's unfolded part, the sphere with the fold healed by a fan),
 // transports, and leaves the fold to the next stage's composition, which untangles it at the
 // wider scale the stage gave the finger (TestCrowding: converged with no flip up to L / rho =
-// 90, e^180, on the disk, 36 on the sphere, where a folded stage ended in an error from 60 and
+// 95, e^190, on the disk, 36 on the sphere, where a folded stage ended in an error from 60 and
 // 33).
 struct DiskStaging
 {
@@ -233,11 +233,16 @@ struct DiskStaging
     const Vec2 a = run.startUv[t[0]];
     return 0.5 * cross(run.startUv[t[1]] - a, run.startUv[t[2]] - a);
   }
-  static SamplingStage sample(const AreaPreservingResult& run, const std::vector<double>& density,
-    const SamplerOptions& options)
+  // The unfolded part, or with `peel` the same peeled of the triangles lying across the fold
+  // (Mesh/Folds.h). Each alone fails somewhere in L / rho = 85-100 on TestCrowding's finger:
+  // the unpeeled part at 85 and 95 (its boundary crosses itself), the peeled one at 90 (too
+  // fine for the mesher); parameterizeDisk stages with the one, then the other.
+  bool peel = false;
+  SamplingStage sample(const AreaPreservingResult& run, const std::vector<double>& density,
+    const SamplerOptions& options) const
   {
     const std::vector<Triangle>& all = run.conformal.surface.mesh.triangles;
-    const std::vector<bool> kept = unfoldedPart(run.startUv, all);
+    const std::vector<bool> kept = unfoldedPart(run.startUv, all, this->peel);
     std::vector<Triangle> triangles;
     std::vector<double> values;
     for (size_t t = 0; t < all.size(); ++t)
@@ -339,8 +344,8 @@ std::vector<double> stageAreaShares(const Run& run, const std::vector<double>& c
 
 // One stage: the start map moved by the transport of its clamped density. "" or the error.
 template <class Staging, class Run>
-std::string transportStage(
-  const AreaPreservingOptions& options, Run& run, const std::function<bool(double)>& keepGoing)
+std::string transportStage(const AreaPreservingOptions& options, const Staging& staging, Run& run,
+  const std::function<bool(double)>& keepGoing)
 {
   SamplerOptions samplerOptions = options.sampling;
   samplerOptions.progress = keepGoing;
@@ -349,7 +354,7 @@ std::string transportStage(
   // once the fold is untangled, corrects (correcting around a fold left the fold's rim too
   // long for a stage's sampler at L / rho = 80).
   const bool correct = !Staging::folded(run);
-  const auto sampling = Staging::sample(run, clamped, samplerOptions);
+  const auto sampling = staging.sample(run, clamped, samplerOptions);
   if (!sampling.status.ok())
   {
     run.status.aborted = sampling.status.aborted;
@@ -391,7 +396,7 @@ std::string transportStage(
 // the conformal map, moved by staged transports while its density spans more than
 // CrowdedDensityRange. Sets run.sampling.status when a stage fails.
 template <class Staging, class Run>
-void transportInStages(const AreaPreservingOptions& options, Run& run)
+void transportInStages(const AreaPreservingOptions& options, const Staging& staging, Run& run)
 {
   run.startDensity = run.conformal.areaDensityPerTriangle;
   const auto keepGoing = [&options](double)
@@ -410,7 +415,7 @@ void transportInStages(const AreaPreservingOptions& options, Run& run)
       break; // the last transport says what it can
     }
     const double range = rangeOf(run.startDensity);
-    const std::string error = transportStage<Staging>(options, run, keepGoing);
+    const std::string error = transportStage(options, staging, run, keepGoing);
     if (run.status.aborted)
     {
       run.sampling.status.aborted = true;
@@ -679,7 +684,16 @@ AreaPreservingResult parameterizeDisk(
     [&]
     {
       run.startUv = run.conformal.map.uv;
-      transportInStages<DiskStaging>(options, run);
+      transportInStages(options, DiskStaging{}, run);
+      if (!run.sampling.status.ok() && !run.sampling.status.aborted &&
+        run.conformal.figures.flippedTriangles > 0)
+      {
+        // A folded conformal image: the stages again, each sampling its peeled unfolded part.
+        run.startUv = run.conformal.map.uv;
+        run.transportStages = 0;
+        run.sampling.status = Status();
+        transportInStages(options, DiskStaging{ true }, run);
+      }
       if (!run.sampling.status.ok())
       {
         return;
@@ -774,7 +788,7 @@ SphereParameterizationResult parameterizeSphere(
     [&]
     {
       run.startSphere = run.conformal.map.sphere;
-      transportInStages<SphereStaging>(options, run);
+      transportInStages(options, SphereStaging{}, run);
       if (!run.sampling.status.ok())
       {
         return;

@@ -2,6 +2,7 @@
 
 #include "Common/DirectedEdges.h"
 #include "Common/IdList.h"
+#include "Common/SegmentCrossings.h"
 #include "Sampling/Sampler.h"
 
 #include <CGAL/Convex_hull_traits_adapter_2.h>
@@ -386,6 +387,10 @@ bool DensityField::traceBoundaryLoops(std::string& error)
       return false;
     }
   }
+  if (!this->checkLoopsDoNotCross(next, error))
+  {
+    return false;
+  }
   std::unordered_set<int> done;
   for (const auto& start : next)
   {
@@ -415,6 +420,28 @@ bool DensityField::traceBoundaryLoops(std::string& error)
       return a.front().x < b.front().x || (a.front().x == b.front().x && a.front().y < b.front().y);
     });
   return true;
+}
+
+// The boundary loops become the mesher's constraints, which must not cross: CGAL's mesher
+// crashed on a domain whose far-apart triangles overlapped, though every triangle and every
+// edge was sound (the unfolded part of a crowded finger's map).
+bool DensityField::checkLoopsDoNotCross(
+  const std::unordered_map<int, int>& next, std::string& error) const
+{
+  std::vector<std::pair<int, int>> edges(next.begin(), next.end());
+  std::sort(edges.begin(), edges.end()); // a fixed order: the map's is not
+  const std::vector<std::pair<int, int>> crossings = crossingSegments(this->Points, edges);
+  if (crossings.empty())
+  {
+    return true;
+  }
+  const auto [first, second] = crossings.front();
+  std::ostringstream msg;
+  msg << "the domain's boundary crosses itself: its edge from point " << edges[first].first
+      << " to point " << edges[first].second << " meets its edge from point " << edges[second].first
+      << " to point " << edges[second].second << " (triangles overlap there)";
+  error = msg.str();
+  return false;
 }
 
 Vec2 DensityField::nearestBoundaryPoint(Vec2 x) const

@@ -10,6 +10,7 @@
 
 #include <memory>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 namespace otparam
@@ -68,6 +69,7 @@ private:
   int locate(Vec2 x) const; // triangle containing x, or -1
   double valueIn(std::size_t t, Vec2 x) const; // the density of triangle t at x
   bool traceBoundaryLoops(std::string& error);
+  bool checkLoopsDoNotCross(const std::unordered_map<int, int>& next, std::string& error) const;
   // The steps of create(), each "" or its message.
   std::string orientAndIntegrate();
   void keepSupport();

@@ -11,6 +11,12 @@
 // circumradius above eps; or too thin: smallest angle below the bound), insert its
 // circumcentre, unless that encroaches a boundary edge (lies outside the domain or inside the
 // edge's diametral circle), in which case the boundary edge is split instead.
+// CGAL's checks on in this file (whatever NDEBUG says): its mesher, given boundary edges at the
+// end of double precision (the crushed tip of a finger crowded beyond it), fails an assertion
+// (Refine_edges.h, "n == zone.fh": an edge's inexactly computed midpoint outside the edge's two
+// faces) and, with the checks off, crashed. On, the failure is an exception that sampleDensity
+// turns into a message about the domain. (Only this file instantiates the mesher.)
+#define CGAL_DEBUG
 #include "Sampling/PlanarSampler.h"
 
 #include "Transport/SemiDiscreteOT.h"
@@ -1414,13 +1420,24 @@ SamplerResult sampleDensity(const DensityField& field, const SamplerOptions& opt
       return result;
     }
     const double target = static_cast<double>(options.numberOfSamples);
-    if (field.isConvex())
+    try
     {
-      sampleConvex(field, options, integral, result);
+      if (field.isConvex())
+      {
+        sampleConvex(field, options, integral, result);
+      }
+      else
+      {
+        sampleSupport(field, options, integral, result);
+      }
     }
-    else
+    catch (const CGAL::Failure_exception&)
     {
-      sampleSupport(field, options, integral, result);
+      result.status.error =
+        "the refinement met features too fine for double precision (points or edges a few "
+        "units in the last place apart: a spike, a sliver, a crushed part of a map); check the "
+        "domain's geometry";
+      return result;
     }
     if (result.status.aborted || !result.status.error.empty())
     {

@@ -3,6 +3,7 @@
 // healed by a fan.
 #include "Mesh/Folds.h"
 
+#include "Common/SegmentCrossings.h"
 #include "Common/SphericalGeometry.h"
 #include "RingDisk.h"
 #include "SphereMeshes.h"
@@ -87,6 +88,56 @@ TEST(Folds, UnfoldedPartLeavesOutTheFoldAndWhatWouldPinch)
   }
   const std::vector<bool> pinched = unfoldedPart(hexagon, fan);
   EXPECT_EQ(std::count(pinched.begin(), pinched.end(), true), 0);
+}
+
+TEST(Folds, UnfoldedPartIsPeeledUntilItsBoundaryDoesNotCross)
+{
+  // A ring disk with a point of the ring inside the circle thrown out past it: some triangles
+  // of its star turn clockwise, others stay counter-clockwise but lie across the circle's
+  // edges, so the boundary of the positive triangles crosses itself (CGAL's mesher crashed on
+  // such a domain: a crowded finger's stage map). The unfolded part leaves those out too.
+  const auto disk = otparam::testing::makePlanarDisk(12);
+  std::vector<Vec2> uv = disk.points;
+  const int moved = 331;
+  ASSERT_NEAR(norm(uv[moved]), 11.0 / 12.0, 1e-12);
+  uv[moved] = 1.3 * uv[moved];
+  const auto boundaryOf = [&](const std::vector<bool>& kept)
+  {
+    std::set<std::pair<int, int>> edges;
+    for (size_t t = 0; t < kept.size(); ++t)
+    {
+      for (int k = 0; kept[t] && k < 3; ++k)
+      {
+        edges.insert({ disk.triangles[t][k], disk.triangles[t][(k + 1) % 3] });
+      }
+    }
+    std::vector<std::pair<int, int>> boundary;
+    for (const auto& [a, b] : edges)
+    {
+      if (!edges.count({ b, a }))
+      {
+        boundary.push_back({ a, b });
+      }
+    }
+    return boundary;
+  };
+  std::vector<bool> positiveOnes(disk.triangles.size());
+  for (size_t t = 0; t < positiveOnes.size(); ++t)
+  {
+    positiveOnes[t] = positive(uv, disk.triangles[t]);
+  }
+  ASSERT_FALSE(crossingSegments(uv, boundaryOf(positiveOnes)).empty());
+  EXPECT_FALSE(crossingSegments(uv, boundaryOf(unfoldedPart(uv, disk.triangles))).empty());
+  const std::vector<bool> kept = unfoldedPart(uv, disk.triangles, true);
+  EXPECT_TRUE(crossingSegments(uv, boundaryOf(kept)).empty());
+  EXPECT_LE(mostBoundaryEdgesAtAVertex(disk.triangles, kept, uv.size()), 2);
+  std::size_t keptCount = 0;
+  for (size_t t = 0; t < kept.size(); ++t)
+  {
+    EXPECT_TRUE(!kept[t] || positive(uv, disk.triangles[t])) << "triangle " << t;
+    keptCount += kept[t] ? 1 : 0;
+  }
+  EXPECT_GE(keptCount, disk.triangles.size() - 60); // only around the moved point
 }
 
 TEST(Folds, HealedSphereIsClosedAndPositive)

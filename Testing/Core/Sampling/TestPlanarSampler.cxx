@@ -153,6 +153,29 @@ TEST(AdaptiveSampler, PerTriangleDensityAndPolygonDomain)
   EXPECT_NEAR(sum(vertices.mass), 4.0, 1e-12);
 }
 
+TEST(AdaptiveSampler, NamesFeaturesTooFineForDoublePrecision)
+{
+  // A unit square with a spike 4e-16 wide on its top edge (two units in the last place): CGAL's
+  // mesher splits the spike's sides at midpoints that round beside them and fails an assertion
+  // (Refine_edges.h, "n == zone.fh"). With CGAL's checks off, as in release builds, it went on
+  // from a broken triangulation: here samples and no error, on a crowded finger's stage domain a
+  // segmentation fault. The sampler keeps the checks on and names the cause.
+  const double w = 4e-16;
+  const std::vector<Vec2> points = { { 0, 0 }, { 1, 0 }, { 1, 1 }, { 0.5 + w, 1 }, { 0.5, 1 },
+    { 0, 1 }, { 0.5 + w / 2, 2 } };
+  const std::vector<Triangle> triangles = { { 0, 1, 2 }, { 0, 2, 3 }, { 0, 3, 4 }, { 0, 4, 5 },
+    { 4, 3, 6 } };
+  std::string error;
+  const auto field =
+    DensityField::create(points, triangles, {}, std::vector<double>(5, 1.0), error);
+  ASSERT_NE(field, nullptr) << error;
+  SamplerOptions options;
+  options.numberOfSamples = 5000;
+  const SamplerResult result = sampleDensity(*field, options);
+  EXPECT_NE(result.status.error.find("features too fine for double precision"), std::string::npos)
+    << result.status.error;
+}
+
 TEST(AdaptiveSampler, RejectsWhatItCannotSample)
 {
   std::string error;
@@ -171,6 +194,18 @@ TEST(AdaptiveSampler, RejectsWhatItCannotSample)
   EXPECT_NE(
     error.find(
       "triangles 0 and 1 overlap (both have the edge from point 0 to point 1 on the same side)"),
+    std::string::npos)
+    << error;
+  // Two triangles with no point in common, the second across the first: every edge belongs to
+  // one triangle, but the boundary loops cross, which crashed CGAL's mesher (found on the
+  // unfolded part of a crowded finger's map).
+  const std::vector<Vec2> apart = { { 0, 0 }, { 1, 0 }, { 0, 1 }, { 0.2, 0.2 }, { 1.2, 0.2 },
+    { 0.2, 1.2 } };
+  EXPECT_EQ(DensityField::create(
+              apart, { { 0, 1, 2 }, { 3, 4, 5 } }, std::vector<double>(6, 1.0), {}, error),
+    nullptr);
+  EXPECT_NE(error.find("the domain's boundary crosses itself: its edge from point 1 to point 2 "
+                       "meets its edge from point 3 to point 4"),
     std::string::npos)
     << error;
   // Negative, NaN and all-zero densities.
