@@ -84,6 +84,9 @@ run_main() {
 
 run_tests() {
   setup
+  # Tests run side by side (--parallel): idle OpenMP threads sleep, so that one test's spinning
+  # threads do not starve the other's (as the otparam command sets it).
+  export OMP_WAIT_POLICY=${OMP_WAIT_POLICY:-passive}
   log "ctest in $build"
   (cd "$build" && ctest --output-on-failure --parallel "$jobs")
 
