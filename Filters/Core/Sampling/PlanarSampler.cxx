@@ -15,7 +15,10 @@
 // end of double precision (the crushed tip of a finger crowded beyond it), fails an assertion
 // (Refine_edges.h, "n == zone.fh": an edge's inexactly computed midpoint outside the edge's two
 // faces) and, with the checks off, crashed. On, the failure is an exception that sampleDensity
-// turns into a message about the domain. (Only this file instantiates the mesher.)
+// turns into a message about the domain. Only this file instantiates the mesher; of the CGAL
+// functions it shares with other files (exact arithmetic, spatial sorting) none carries a check
+// but the assertion machinery itself (objdump of this object, 2026-11-27), so the other files'
+// code does not change with the define.
 #define CGAL_DEBUG
 #include "Sampling/PlanarSampler.h"
 
