@@ -31,8 +31,10 @@
 #include <fstream>
 #include <functional>
 #include <limits>
+#include <map>
 #include <mutex>
 #include <random>
+#include <set>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -713,6 +715,20 @@ CaseResult fuzzConformalSphere(Rng& rng)
     : "";
 }
 
+// A planar sampling stage's outcome: refused cleanly, or samples that are finite with a mass each.
+CaseResult refusedOrSound(const SamplingStage& stage)
+{
+  if (!stage.status.error.empty() || stage.status.aborted)
+  {
+    return refused(stage.status);
+  }
+  Accepted = true;
+  return finite(stage.result.samples) && finite(stage.result.mass) &&
+      stage.result.mass.size() == stage.result.samples.size()
+    ? ""
+    : "samples called good are non-finite or without one mass each";
+}
+
 CaseResult fuzzPlanarSampler(Rng& rng)
 {
   const otparam::testing::PlanarMesh disk =
@@ -755,15 +771,92 @@ CaseResult fuzzPlanarSampler(Rng& rng)
   }
   const SamplingStage stage = runSamplingStage(points, triangles,
     perPoint ? values : std::vector<double>(), perPoint ? std::vector<double>() : values, options);
-  if (!stage.status.error.empty() || stage.status.aborted)
+  return refusedOrSound(stage);
+}
+
+// Planar domains whose triangles are each sound but whose whole is not: a patch laid across the
+// others (no shared point), a point thrown across its neighbours, a patch shrunk towards the
+// end of double precision, a sliver spike a few units in the last place wide. CGAL's mesher
+// crashed on the first and third kinds (a crowded finger's stage domains; robustness.md,
+// finding 7); the sampler must refuse them or sample them.
+CaseResult fuzzPlanarSamplerOnBrokenDomains(Rng& rng)
+{
+  const otparam::testing::PlanarMesh disk =
+    otparam::testing::makePlanarDisk(4 + static_cast<int>(pick(rng, 8)));
+  std::vector<Vec2> points = disk.points;
+  std::vector<Triangle> triangles = disk.triangles;
+  const int centre = static_cast<int>(pick(rng, points.size()));
+  // The triangles within `radius` of the centre point, as a patch.
+  const double radius = 0.05 + 0.5 * static_cast<double>(rng() % 1000) / 1000.0;
+  std::vector<size_t> patch;
+  for (size_t t = 0; t < triangles.size(); ++t)
   {
-    return refused(stage.status);
+    if (norm(points[triangles[t][0]] - points[centre]) < radius)
+    {
+      patch.push_back(t);
+    }
   }
-  Accepted = true;
-  return finite(stage.result.samples) && finite(stage.result.mass) &&
-      stage.result.mass.size() == stage.result.samples.size()
-    ? ""
-    : "samples called good are non-finite or without one mass each";
+  switch (rng() % 4)
+  {
+    case 0: // the patch copied onto points of its own, moved across the others
+    {
+      const Vec2 shift = { 0.1 + 1.4 * static_cast<double>(rng() % 1000) / 1000.0,
+        0.7 * static_cast<double>(rng() % 1000) / 1000.0 };
+      std::map<int, int> copy;
+      for (size_t t : patch)
+      {
+        Triangle moved = triangles[t];
+        for (int& v : moved)
+        {
+          const auto [it, added] = copy.emplace(v, static_cast<int>(points.size()));
+          if (added)
+          {
+            points.push_back(points[v] + shift);
+          }
+          v = it->second;
+        }
+        triangles.push_back(moved);
+      }
+      break;
+    }
+    case 1: // a point thrown across its neighbours
+      points[centre] = points[centre] +
+        Vec2{ 0.4 * static_cast<double>(rng() % 1000) / 1000.0 - 0.2,
+          0.4 * static_cast<double>(rng() % 1000) / 1000.0 - 0.2 };
+      break;
+    case 2: // the patch shrunk by 1e-9 .. 1e-17 towards its centre
+    {
+      const double factor = std::pow(10.0, -9.0 - static_cast<double>(pick(rng, 9)));
+      std::set<int> moved;
+      for (size_t t : patch)
+      {
+        moved.insert(triangles[t].begin(), triangles[t].end());
+      }
+      const Vec2 c = points[centre];
+      for (int v : moved)
+      {
+        points[v] = c + factor * (points[v] - c);
+      }
+      break;
+    }
+    default: // a spike 1-64 units in the last place wide on a boundary edge of the unit circle
+    {
+      const Vec2 a = { 1.0, 0.0 };
+      const double ulp = std::nextafter(1.0, 2.0) - 1.0;
+      const double width = static_cast<double>(1 + pick(rng, 64)) * ulp;
+      const int base = static_cast<int>(points.size());
+      points.push_back(a);
+      points.push_back(a + Vec2{ 0.0, width });
+      points.push_back(a + Vec2{ 1.0, 0.5 * width });
+      triangles.push_back({ base, base + 2, base + 1 });
+      break;
+    }
+  }
+  SamplerOptions options;
+  options.numberOfSamples = 50 + static_cast<long long>(pick(rng, 400));
+  const SamplingStage stage =
+    runSamplingStage(points, triangles, {}, std::vector<double>(triangles.size(), 1.0), options);
+  return refusedOrSound(stage);
 }
 
 CaseResult fuzzSphericalSampler(Rng& rng)
@@ -935,6 +1028,7 @@ std::vector<Entry> entries()
     { "conformal-disk", fuzzConformalDisk },
     { "conformal-sphere", fuzzConformalSphere },
     { "sampler-plane", fuzzPlanarSampler },
+    { "sampler-plane-broken", fuzzPlanarSamplerOnBrokenDomains },
     { "sampler-sphere", fuzzSphericalSampler },
     { "transport-plane", fuzzPlanarTransport },
     { "transport-sphere", fuzzSphericalTransport },
