@@ -23,6 +23,26 @@ bool positive(const std::vector<Vec3>& x, const Triangle& t)
 
 namespace
 {
+template <class Point>
+bool anyNotPositive(const std::vector<Point>& points, const std::vector<Triangle>& triangles)
+{
+  return std::any_of(triangles.begin(), triangles.end(),
+    [&points](const Triangle& t) { return !positive(points, t); });
+}
+} // namespace
+
+bool anyFolded(const std::vector<Vec2>& uv, const std::vector<Triangle>& triangles)
+{
+  return anyNotPositive(uv, triangles);
+}
+
+bool anyFolded(const std::vector<Vec3>& x, const std::vector<Triangle>& triangles)
+{
+  return anyNotPositive(x, triangles);
+}
+
+namespace
+{
 // The directed edges a -> b of the triangles inPatch that no other such triangle shares: the
 // patch's boundary, with the patch on the left; `owners` (when given) gets each edge's triangle.
 std::vector<std::pair<int, int>> boundaryEdges(const std::vector<Triangle>& triangles,
@@ -174,14 +194,14 @@ void peelCrossings(
 std::vector<bool> unfoldedPart(
   const std::vector<Vec2>& uv, const std::vector<Triangle>& triangles, bool peel)
 {
+  if (!anyFolded(uv, triangles))
+  {
+    return std::vector<bool>(triangles.size(), true); // an unfolded map is kept whole
+  }
   std::vector<bool> kept(triangles.size());
   for (size_t t = 0; t < triangles.size(); ++t)
   {
     kept[t] = positive(uv, triangles[t]);
-  }
-  if (std::find(kept.begin(), kept.end(), false) == kept.end())
-  {
-    return kept; // an unfolded map is kept whole
   }
   dropPinches(triangles, uv.size(), kept);
   if (peel)
@@ -194,14 +214,14 @@ std::vector<bool> unfoldedPart(
 void healSphereFolds(
   std::vector<Vec3>& points, std::vector<Triangle>& triangles, std::vector<double>& density)
 {
+  if (!anyFolded(points, triangles))
+  {
+    return;
+  }
   std::vector<bool> inPatch(triangles.size());
   for (size_t t = 0; t < triangles.size(); ++t)
   {
     inPatch[t] = !positive(points, triangles[t]);
-  }
-  if (std::find(inPatch.begin(), inPatch.end(), true) == inPatch.end())
-  {
-    return;
   }
   for (int ring = 0; ring < 8; ++ring)
   {

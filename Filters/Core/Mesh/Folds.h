@@ -17,6 +17,10 @@ namespace otparam
 bool positive(const std::vector<Vec2>& uv, const Triangle& t);
 bool positive(const std::vector<Vec3>& x, const Triangle& t);
 
+// Whether any triangle of the map is not positive.
+bool anyFolded(const std::vector<Vec2>& uv, const std::vector<Triangle>& triangles);
+bool anyFolded(const std::vector<Vec3>& x, const std::vector<Triangle>& triangles);
+
 // The triangles of positive area in a planar map, less those at a vertex where two fans of them
 // would meet (a pinch a sampler's domain cannot have): the unfolded part a disk stage samples.
 // With `peel`, also, round by round, those whose boundary edges cross others (positive

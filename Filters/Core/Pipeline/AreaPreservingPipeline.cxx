@@ -222,11 +222,10 @@ std::vector<Triangle> diracTriangulation(
 struct DiskStaging
 {
   using Point = Vec2;
+  static void start(AreaPreservingResult& run) { run.startUv = run.conformal.map.uv; }
   static bool folded(const AreaPreservingResult& run)
   {
-    const std::vector<Triangle>& triangles = run.conformal.surface.mesh.triangles;
-    return std::any_of(triangles.begin(), triangles.end(),
-      [&run](const Triangle& t) { return !positive(run.startUv, t); });
+    return anyFolded(run.startUv, run.conformal.surface.mesh.triangles);
   }
   static double area(const AreaPreservingResult& run, const Triangle& t)
   {
@@ -279,11 +278,13 @@ struct DiskStaging
 struct SphereStaging
 {
   using Point = Vec3;
+  static void start(SphereParameterizationResult& run)
+  {
+    run.startSphere = run.conformal.map.sphere;
+  }
   static bool folded(const SphereParameterizationResult& run)
   {
-    const std::vector<Triangle>& triangles = run.conformal.surface.mesh.triangles;
-    return std::any_of(triangles.begin(), triangles.end(),
-      [&run](const Triangle& t) { return !positive(run.startSphere, t); });
+    return anyFolded(run.startSphere, run.conformal.surface.mesh.triangles);
   }
   static double area(const SphereParameterizationResult& run, const Triangle& t)
   {
@@ -375,7 +376,6 @@ std::string transportStage(const AreaPreservingOptions& options, const Staging& 
   }
   CompositionOptions compositionOptions = options.composition;
   compositionOptions.correctAreas = correct;
-  compositionOptions.measuredTriangles = 0;
   if (correct)
   {
     compositionOptions.targetAreaShares = stageAreaShares<Staging>(run, clamped);
@@ -398,7 +398,10 @@ std::string transportStage(const AreaPreservingOptions& options, const Staging& 
 template <class Staging, class Run>
 void transportInStages(const AreaPreservingOptions& options, const Staging& staging, Run& run)
 {
+  Staging::start(run);
   run.startDensity = run.conformal.areaDensityPerTriangle;
+  run.transportStages = 0;
+  run.sampling.status = Status();
   const auto keepGoing = [&options](double)
   { return !options.progress || options.progress("sampling", SamplingRange.start); };
   // A stage that left a fold is followed by another, which untangles it.
@@ -683,15 +686,11 @@ AreaPreservingResult parameterizeDisk(
     },
     [&]
     {
-      run.startUv = run.conformal.map.uv;
       transportInStages(options, DiskStaging{}, run);
       if (!run.sampling.status.ok() && !run.sampling.status.aborted &&
         run.conformal.figures.flippedTriangles > 0)
       {
         // A folded conformal image: the stages again, each sampling its peeled unfolded part.
-        run.startUv = run.conformal.map.uv;
-        run.transportStages = 0;
-        run.sampling.status = Status();
         transportInStages(options, DiskStaging{ true }, run);
       }
       if (!run.sampling.status.ok())
@@ -787,7 +786,6 @@ SphereParameterizationResult parameterizeSphere(
     },
     [&]
     {
-      run.startSphere = run.conformal.map.sphere;
       transportInStages(options, SphereStaging{}, run);
       if (!run.sampling.status.ok())
       {
