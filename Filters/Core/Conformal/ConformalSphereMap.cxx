@@ -712,4 +712,12 @@ ConformalSphereMapResult computeConformalSphereMap(
   return result;
 }
 
+//------------------------------------------------------------------------------
+double balanceMeasure(const std::vector<Triangle>& triangles, const std::vector<double>& weight,
+  std::vector<Vec3>& sphere, double tolerance, int maximumIterations)
+{
+  Vec3 untracked{ 0.0, 0.0, 1.0 };
+  return balance(triangles, weight, sphere, untracked, tolerance, maximumIterations).residual;
+}
+
 } // namespace otparam

@@ -64,6 +64,12 @@ ConformalSphereMapResult computeConformalSphereMap(
 // quantity the balancing sends to 0. `sphere` holds unit vectors.
 Vec3 pushedAreaCentre(const SurfaceMesh& mesh, const std::vector<Vec3>& sphere);
 
+// Moebius maps (hyperbolic translations) applied to `sphere` until the measure that gives each
+// triangle `weight[t]` (summing to 1) spread over its image has its centre of mass within
+// `tolerance` of the origin, or no step lowers it. Returns that distance.
+double balanceMeasure(const std::vector<Triangle>& triangles, const std::vector<double>& weight,
+  std::vector<Vec3>& sphere, double tolerance, int maximumIterations);
+
 } // namespace otparam
 
 #endif

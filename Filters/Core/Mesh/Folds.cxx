@@ -4,12 +4,17 @@
 #include "Common/SegmentCrossings.h"
 #include "Common/SphericalGeometry.h"
 
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/triangulate_hole.h>
+
 #include <algorithm>
 #include <map>
+#include <set>
 #include <utility>
 
 namespace otparam
 {
+using HoleKernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 
 bool positive(const std::vector<Vec2>& uv, const Triangle& t)
 {
@@ -132,6 +137,65 @@ bool fanCentre(const std::vector<Vec3>& points, const std::map<int, int>& rim, V
     [&](const std::pair<const int, int>& edge)
     { return sphericalTriangleArea(points[edge.first], points[edge.second], centre) > 0.0; });
 }
+
+// The rim's loop triangulated without new points where no fan is positive (a rim that is not
+// star-shaped about its centre): CGAL's hole filling (minimal area) of the loop in the gnomonic
+// chart at its centre, kept when every triangle is positive on the sphere.
+bool triangulateRim(
+  const std::vector<Vec3>& points, const std::map<int, int>& rim, std::vector<Triangle>& fill)
+{
+  Vec3 sum{};
+  for (const auto& edge : rim)
+  {
+    sum = sum + points[edge.first];
+  }
+  // The hole filling's search is cubic in the loop's length.
+  constexpr std::size_t LongestTriangulatedRim = 64;
+  if (rim.size() < 3 || rim.size() > LongestTriangulatedRim || !(norm(sum) > 1e-3))
+  {
+    return false;
+  }
+  const Vec3 centre = normalized(sum);
+  const Vec3 helper = std::abs(centre.x) < 0.6 ? Vec3{ 1, 0, 0 } : Vec3{ 0, 1, 0 };
+  const Vec3 e1 = normalized(cross(centre, helper)), e2 = cross(centre, e1);
+  std::vector<int> loop;
+  std::vector<HoleKernel::Point_3> polyline;
+  for (int v = rim.begin()->first; loop.size() < rim.size(); v = rim.at(v))
+  {
+    const double height = dot(points[v], centre);
+    if (!(height > 0.05))
+    {
+      return false; // beyond the chart
+    }
+    loop.push_back(v);
+    polyline.emplace_back(dot(points[v], e1) / height, dot(points[v], e2) / height, 0.0);
+  }
+  std::vector<CGAL::Triple<int, int, int>> faces;
+  CGAL::Polygon_mesh_processing::triangulate_hole_polyline(polyline, std::back_inserter(faces));
+  if (faces.size() + 2 != loop.size())
+  {
+    return false;
+  }
+  // The fill takes the patch's side of each rim edge a -> b (in a's and b's order).
+  const auto follows = [&](int a, int b) { return b == (a + 1) % static_cast<int>(loop.size()); };
+  bool reversed = false;
+  for (const auto& face : faces)
+  {
+    if (follows(face.second, face.first) || follows(face.third, face.second) ||
+      follows(face.first, face.third))
+    {
+      reversed = true;
+      break;
+    }
+  }
+  for (const auto& face : faces)
+  {
+    fill.push_back({ loop[face.first], loop[reversed ? face.third : face.second],
+      loop[reversed ? face.second : face.third] });
+  }
+  return std::all_of(
+    fill.begin(), fill.end(), [&](const Triangle& t) { return positive(points, t); });
+}
 } // namespace
 
 namespace
@@ -211,18 +275,78 @@ std::vector<bool> unfoldedPart(
   return kept;
 }
 
-void healSphereFolds(
-  std::vector<Vec3>& points, std::vector<Triangle>& triangles, std::vector<double>& density)
+namespace
 {
-  if (!anyFolded(points, triangles))
+// The triangles sharing a vertex, directly or through others, with `seed`'s and as not
+// positive as it: one fold.
+std::vector<bool> foldAround(const std::vector<Vec3>& points,
+  const std::vector<Triangle>& triangles, const std::vector<bool>& notPositive, std::size_t seed)
+{
+  std::vector<bool> inFold(triangles.size(), false), foldVertex(points.size(), false);
+  inFold[seed] = true;
+  for (bool grew = true; grew;)
   {
-    return;
+    grew = false;
+    for (size_t t = 0; t < triangles.size(); ++t)
+    {
+      const Triangle& tri = triangles[t];
+      if (inFold[t])
+      {
+        for (int v : tri)
+        {
+          grew = grew || !foldVertex[v];
+          foldVertex[v] = true;
+        }
+      }
+      else if (notPositive[t] && (foldVertex[tri[0]] || foldVertex[tri[1]] || foldVertex[tri[2]]))
+      {
+        inFold[t] = grew = true;
+      }
+    }
   }
-  std::vector<bool> inPatch(triangles.size());
+  return inFold;
+}
+
+// Whether a rim triangulation's diagonal is already an edge outside the patch (two rim vertices
+// joined around it): the mesh would no longer be a closed surface.
+bool diagonalOutside(const std::vector<Triangle>& triangles, const std::vector<bool>& inPatch,
+  const std::map<int, int>& rim, const std::vector<Triangle>& fill)
+{
+  const auto undirected = [](int a, int b)
+  { return std::make_pair(std::min(a, b), std::max(a, b)); };
+  std::set<std::pair<int, int>> diagonals;
+  for (const Triangle& t : fill)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      const int a = t[k], b = t[(k + 1) % 3];
+      const auto along = rim.find(a), against = rim.find(b);
+      if (!(along != rim.end() && along->second == b) &&
+        !(against != rim.end() && against->second == a))
+      {
+        diagonals.insert(undirected(a, b));
+      }
+    }
+  }
   for (size_t t = 0; t < triangles.size(); ++t)
   {
-    inPatch[t] = !positive(points, triangles[t]);
+    for (int k = 0; !inPatch[t] && k < 3; ++k)
+    {
+      if (diagonals.count(undirected(triangles[t][k], triangles[t][(k + 1) % 3])))
+      {
+        return true;
+      }
+    }
   }
+  return false;
+}
+
+// The fold's patch grown ring by ring (up to 8) until its rim is one loop from whose centre a
+// fan is positive, or which CGAL's hole filling triangulates with positive triangles, and
+// replaced by that fan or fill; false when no ring gives one.
+bool replacePatch(std::vector<Vec3>& points, std::vector<Triangle>& triangles,
+  std::vector<double>& density, std::vector<bool> inPatch)
+{
   for (int ring = 0; ring < 8; ++ring)
   {
     // One more ring: every triangle touching a vertex of the patch.
@@ -240,8 +364,11 @@ void healSphereFolds(
       inPatch[t] = patchVertex[tri[0]] || patchVertex[tri[1]] || patchVertex[tri[2]];
     }
     const std::map<int, int> rim = patchRim(triangles, inPatch);
+    std::vector<Triangle> fill;
     Vec3 centre;
-    if (!fanCentre(points, rim, centre))
+    const bool fan = fanCentre(points, rim, centre);
+    if (!fan &&
+      (!triangulateRim(points, rim, fill) || diagonalOutside(triangles, inPatch, rim, fill)))
     {
       continue;
     }
@@ -257,16 +384,68 @@ void healSphereFolds(
         healedDensity.push_back(density[t]);
       }
     }
-    const int centreId = static_cast<int>(points.size());
-    for (const auto& [a, b] : rim)
+    if (fan)
     {
-      healed.push_back({ a, b, centreId });
-      healedDensity.push_back(patchDensity);
+      const int centreId = static_cast<int>(points.size());
+      for (const auto& [a, b] : rim)
+      {
+        fill.push_back({ a, b, centreId });
+      }
+      points.push_back(centre);
     }
-    points.push_back(centre);
+    healed.insert(healed.end(), fill.begin(), fill.end());
+    healedDensity.resize(healed.size(), patchDensity);
     triangles.swap(healed);
     density.swap(healedDensity);
+    return true;
+  }
+  return false;
+}
+} // namespace
+
+void healSphereFolds(
+  std::vector<Vec3>& points, std::vector<Triangle>& triangles, std::vector<double>& density)
+{
+  if (!anyFolded(points, triangles))
+  {
     return;
+  }
+  std::vector<bool> notPositive(triangles.size());
+  for (size_t t = 0; t < triangles.size(); ++t)
+  {
+    notPositive[t] = !positive(points, triangles[t]);
+  }
+  if (replacePatch(points, triangles, density, notPositive))
+  {
+    return;
+  }
+  // Folds apart, healed apart (a stage's composition can leave dozens of a few triangles each,
+  // which no one fan covers): each patch replaced before the next is sought.
+  std::vector<bool> tried(triangles.size(), false); // folds no patch around could replace
+  for (std::size_t seed = 0; seed < triangles.size();)
+  {
+    if (tried[seed] || positive(points, triangles[seed]))
+    {
+      ++seed;
+      continue;
+    }
+    std::vector<bool> folded(triangles.size());
+    for (size_t t = 0; t < triangles.size(); ++t)
+    {
+      folded[t] = !positive(points, triangles[t]);
+    }
+    const std::vector<bool> fold = foldAround(points, triangles, folded, seed);
+    if (replacePatch(points, triangles, density, fold))
+    {
+      tried.assign(triangles.size(), false); // renumbered: every fold is sought again
+      seed = 0;
+      continue;
+    }
+    for (size_t t = 0; t < triangles.size(); ++t)
+    {
+      tried[t] = tried[t] || fold[t];
+    }
+    ++seed;
   }
 }
 

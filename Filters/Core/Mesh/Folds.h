@@ -32,8 +32,10 @@ std::vector<bool> unfoldedPart(
 // A sphere's sampler takes a closed mesh of positive triangles only: the patch around folded or
 // degenerate triangles is replaced by a fan from its rim's centre (a point appended to
 // `points`, density the patch's largest), the patch grown ring by ring (up to 8) until its rim
-// is one loop around which the fan is positive. When none is, the mesh is left as it is (the
-// sampler then names the fold).
+// is one loop around which the fan is positive, or, failing a fan, whose loop CGAL's hole
+// filling triangulates with positive triangles. All the folds are one patch first; when no
+// ring gives it a rim, each fold (folded triangles sharing vertices) is healed apart. A fold
+// that cannot be healed is left as it is (the sampler then names it).
 void healSphereFolds(
   std::vector<Vec3>& points, std::vector<Triangle>& triangles, std::vector<double>& density);
 

@@ -50,7 +50,12 @@ std::string checkPointsOnSphere(std::vector<Vec3>& points)
           << ").";
       return msg.str();
     }
-    points[i] = normalized(points[i]);
+    // Unit vectors as `normalized` leaves them are kept to the bit: a crowded map's tiny
+    // triangles, checked positive by their maker (healSphereFolds), could flip when rounded again.
+    if (std::abs(r - 1.0) > 4.0 * std::numeric_limits<double>::epsilon())
+    {
+      points[i] = normalized(points[i]);
+    }
   }
   return {};
 }
