@@ -157,7 +157,9 @@ constexpr double CrowdedDensityRange = 1e12;
 // whose density it resolves.
 constexpr double StageDensityRange = 1e10;
 constexpr int MaximumTransportStages = 30; // 1e300 / 1e10^30: every range double holds
-constexpr double StageBalanceOffset = 0.3; // SphereStaging::prepare
+// SphereStaging::rebalanceOffset, tried in turn where the stages failed (TestCrowding's closed
+// finger: 0.3 alone leaves 52 failing, 0.15 alone 45; together 37-53 and 55-60).
+constexpr double StageBalanceOffsets[] = { 0.3, 0.15 };
 
 double rangeOf(const std::vector<double>& density)
 {
@@ -218,7 +220,7 @@ std::vector<Triangle> diracTriangulation(
 // samples around the fold (the disk's unfolded part, the sphere with the fold healed by a fan),
 // transports, and leaves the fold to the next stage's composition, which untangles it at the
 // wider scale the stage gave the finger (TestCrowding: converged with no flip up to L / rho =
-// 95, e^190, on the disk, 50 on the sphere, where a folded stage ended in an error from 60 and
+// 95, e^190, on the disk, 53 on the sphere, where a folded stage ended in an error from 60 and
 // 33).
 struct DiskStaging
 {
@@ -284,19 +286,18 @@ struct SphereStaging
   {
     run.startSphere = run.conformal.map.sphere;
   }
-  // With `rebalance`, the first stage's start is moved by a Moebius map that brings the centre
-  // of its clamped density's mass towards the origin (within StageBalanceOffset). The spherical
+  // With a `rebalanceOffset`, the first stage's start is moved by a Moebius map that brings
+  // the centre of its clamped density's mass within that distance of the origin. The spherical
   // transport's cells lie within 90 degrees of their Diracs, so a cap of Diracs cannot take
   // more than about a hemisphere: a closed finger 38 times its radius long puts 59% of the first
   // stage's mass within 8 degrees of one point (the rest of the surface, squeezed by the
   // conformal map's area balancing against the finger), and that transport does not converge.
-  // Balancing fully crushes the finger's tip further (its images collapse); StageBalanceOffset
-  // was chosen on TestCrowding's closed finger (docs/design.md: 0.1, 0.2 and 0.4 left more
-  // lengths failing).
-  bool rebalance = false;
+  // Balancing fully crushes the finger's tip further (its images collapse); the offsets tried
+  // in turn, StageBalanceOffsets, were chosen on TestCrowding's closed finger (docs/design.md).
+  double rebalanceOffset = 0.0;
   void prepare(SphereParameterizationResult& run) const
   {
-    if (!this->rebalance || run.transportStages > 0)
+    if (!(this->rebalanceOffset > 0.0) || run.transportStages > 0)
     {
       return;
     }
@@ -312,7 +313,7 @@ struct SphereStaging
     {
       m /= total;
     }
-    balanceMeasure(triangles, mass, run.startSphere, StageBalanceOffset, 50);
+    balanceMeasure(triangles, mass, run.startSphere, this->rebalanceOffset, 50);
     std::vector<double> perPoint;
     computeSphereAreaDensity(
       run.conformal.surface.mesh, run.startSphere, run.startDensity, perPoint);
@@ -823,10 +824,14 @@ SphereParameterizationResult parameterizeSphere(
     [&]
     {
       transportInStages(options, SphereStaging{}, run);
-      if (!run.sampling.status.ok() && !run.sampling.status.aborted)
+      for (const double offset : StageBalanceOffsets)
       {
+        if (run.sampling.status.ok() || run.sampling.status.aborted)
+        {
+          break;
+        }
         // A stage failed: the stages again, the first from a start rebalanced for it.
-        transportInStages(options, SphereStaging{ true }, run);
+        transportInStages(options, SphereStaging{ offset }, run);
       }
       if (!run.sampling.status.ok())
       {
