@@ -25,6 +25,15 @@ inline double atan2Small(double y, double x)
   return std::atan2(y, x);
 }
 
+// An orthonormal basis (e1, e2) of the tangent plane at the unit vector p, with (e1, e2, p)
+// right-handed: a chart there sees counterclockwise what is counterclockwise from outside.
+inline void tangentFrame(Vec3 p, Vec3& e1, Vec3& e2)
+{
+  const Vec3 helper = std::abs(p.x) < 0.6 ? Vec3{ 1, 0, 0 } : Vec3{ 0, 1, 0 };
+  e1 = normalized(cross(p, helper));
+  e2 = cross(p, e1);
+}
+
 // Signed area of the spherical triangle abc (positive when counter-clockwise seen from
 // outside), by Eriksson's formula tan(E / 2) = a.(b x c) / (1 + a.b + b.c + c.a). The triple
 // product is taken of differences, a.((b - a) x (c - a)), which keeps its relative precision

@@ -57,9 +57,9 @@ struct SphereGeometry
   };
   static Frame frame(Point p)
   {
-    const Vec3 helper = std::abs(p.x) < 0.6 ? Vec3{ 1, 0, 0 } : Vec3{ 0, 1, 0 };
-    const Vec3 e1 = normalized(cross(p, helper));
-    return { e1, cross(p, e1) };
+    Frame f;
+    tangentFrame(p, f.e1, f.e2);
+    return f;
   }
   static double area(Point a, Point b, Point c) { return sphericalTriangleArea(a, b, c); }
   // E = 2 atan2(T, D), T = a.(b x c), D = 1 + a.b + b.c + c.a: dE/da = 2 (D b x c - T (b + c))

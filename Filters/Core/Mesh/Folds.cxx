@@ -119,9 +119,8 @@ std::map<int, int> patchRim(
   return steps == rim.size() ? rim : std::map<int, int>{};
 }
 
-// The centre on the sphere of a rim around which the fan (a, b, centre) is positive for every
-// rim edge a -> b, or false.
-bool fanCentre(const std::vector<Vec3>& points, const std::map<int, int>& rim, Vec3& centre)
+// The direction of a rim's mean point, or false when its points cancel out.
+bool rimCentre(const std::vector<Vec3>& points, const std::map<int, int>& rim, Vec3& centre)
 {
   Vec3 sum{};
   for (const auto& edge : rim)
@@ -133,6 +132,12 @@ bool fanCentre(const std::vector<Vec3>& points, const std::map<int, int>& rim, V
     return false;
   }
   centre = normalized(sum);
+  return true;
+}
+
+// Whether the fan (a, b, centre) is positive for every rim edge a -> b.
+bool fanPositive(const std::vector<Vec3>& points, const std::map<int, int>& rim, Vec3 centre)
+{
   return std::all_of(rim.begin(), rim.end(),
     [&](const std::pair<const int, int>& edge)
     { return sphericalTriangleArea(points[edge.first], points[edge.second], centre) > 0.0; });
@@ -140,24 +145,18 @@ bool fanCentre(const std::vector<Vec3>& points, const std::map<int, int>& rim, V
 
 // The rim's loop triangulated without new points where no fan is positive (a rim that is not
 // star-shaped about its centre): CGAL's hole filling (minimal area) of the loop in the gnomonic
-// chart at its centre, kept when every triangle is positive on the sphere.
-bool triangulateRim(
-  const std::vector<Vec3>& points, const std::map<int, int>& rim, std::vector<Triangle>& fill)
+// chart at `centre`, kept when every triangle is positive on the sphere.
+bool triangulateRim(const std::vector<Vec3>& points, const std::map<int, int>& rim, Vec3 centre,
+  std::vector<Triangle>& fill)
 {
-  Vec3 sum{};
-  for (const auto& edge : rim)
-  {
-    sum = sum + points[edge.first];
-  }
   // The hole filling's search is cubic in the loop's length.
   constexpr std::size_t LongestTriangulatedRim = 64;
-  if (rim.size() < 3 || rim.size() > LongestTriangulatedRim || !(norm(sum) > 1e-3))
+  if (rim.size() < 3 || rim.size() > LongestTriangulatedRim)
   {
     return false;
   }
-  const Vec3 centre = normalized(sum);
-  const Vec3 helper = std::abs(centre.x) < 0.6 ? Vec3{ 1, 0, 0 } : Vec3{ 0, 1, 0 };
-  const Vec3 e1 = normalized(cross(centre, helper)), e2 = cross(centre, e1);
+  Vec3 e1, e2;
+  tangentFrame(centre, e1, e2);
   std::vector<int> loop;
   std::vector<HoleKernel::Point_3> polyline;
   for (int v = rim.begin()->first; loop.size() < rim.size(); v = rim.at(v))
@@ -366,9 +365,14 @@ bool replacePatch(std::vector<Vec3>& points, std::vector<Triangle>& triangles,
     const std::map<int, int> rim = patchRim(triangles, inPatch);
     std::vector<Triangle> fill;
     Vec3 centre;
-    const bool fan = fanCentre(points, rim, centre);
+    if (!rimCentre(points, rim, centre))
+    {
+      continue;
+    }
+    const bool fan = fanPositive(points, rim, centre);
     if (!fan &&
-      (!triangulateRim(points, rim, fill) || diagonalOutside(triangles, inPatch, rim, fill)))
+      (!triangulateRim(points, rim, centre, fill) ||
+        diagonalOutside(triangles, inPatch, rim, fill)))
     {
       continue;
     }

@@ -213,6 +213,28 @@ std::vector<Triangle> diracTriangulation(
     .triangles;
 }
 
+// The shares of the domain a stage's transport gives the triangles of a start map: each its
+// clamped density times its area there (a folded triangle's none). The stage's area correction aims
+// at them: without it the compositions' mesh-scale errors piled up from stage to stage
+// (TestCrowding's finger at L / rho = 80: the last transport started from a map with triangles
+// crushed 1e8-fold between sound ones, and its map kept 3963 flipped triangles; now none).
+template <class Staging, class Run>
+std::vector<double> stageAreaShares(const Run& run, const std::vector<double>& clamped)
+{
+  const std::vector<Triangle>& triangles = run.conformal.surface.mesh.triangles;
+  std::vector<double> shares(triangles.size());
+  for (size_t t = 0; t < triangles.size(); ++t)
+  {
+    shares[t] = clamped[t] * std::max(0.0, Staging::area(run, triangles[t]));
+  }
+  const double total = std::accumulate(shares.begin(), shares.end(), 0.0);
+  for (double& share : shares)
+  {
+    share /= total;
+  }
+  return shares;
+}
+
 // What a staged transport does on each domain: sample the map run.startUv / run.startSphere,
 // transport from the uniform domain, compose, and adopt the composed map with its density.
 // A stage may fold: a finger crowded beyond double precision folds and collapses its tip in the
@@ -301,19 +323,10 @@ struct SphereStaging
     {
       return;
     }
-    const std::vector<Triangle>& triangles = run.conformal.surface.mesh.triangles;
-    const std::vector<double> clamped = clampedForStage(run.startDensity);
-    std::vector<double> mass(triangles.size());
-    for (size_t t = 0; t < triangles.size(); ++t)
-    {
-      mass[t] = clamped[t] * std::max(0.0, area(run, triangles[t])); // folds weigh nothing
-    }
-    const double total = std::accumulate(mass.begin(), mass.end(), 0.0);
-    for (double& m : mass)
-    {
-      m /= total;
-    }
-    balanceMeasure(triangles, mass, run.startSphere, this->rebalanceOffset, 50);
+    const std::vector<double> mass =
+      stageAreaShares<SphereStaging>(run, clampedForStage(run.startDensity));
+    balanceMeasure(
+      run.conformal.surface.mesh.triangles, mass, run.startSphere, this->rebalanceOffset, 50);
     std::vector<double> perPoint;
     computeSphereAreaDensity(
       run.conformal.surface.mesh, run.startSphere, run.startDensity, perPoint);
@@ -356,28 +369,6 @@ struct SphereStaging
       run.conformal.surface.mesh, run.startSphere, run.startDensity, perPoint);
   }
 };
-
-// The shares of the domain a stage's transport gives the triangles of an unfolded start map:
-// each its clamped density times its area there. The stage's area correction aims at them:
-// without it the compositions' mesh-scale errors piled up from stage to stage (TestCrowding's
-// finger at L / rho = 80: the last transport started from a map with triangles crushed 1e8-fold
-// between sound ones, and its map kept 3963 flipped triangles; now none).
-template <class Staging, class Run>
-std::vector<double> stageAreaShares(const Run& run, const std::vector<double>& clamped)
-{
-  const std::vector<Triangle>& triangles = run.conformal.surface.mesh.triangles;
-  std::vector<double> shares(triangles.size());
-  for (size_t t = 0; t < triangles.size(); ++t)
-  {
-    shares[t] = clamped[t] * Staging::area(run, triangles[t]);
-  }
-  const double total = std::accumulate(shares.begin(), shares.end(), 0.0);
-  for (double& share : shares)
-  {
-    share /= total;
-  }
-  return shares;
-}
 
 // One stage: the start map moved by the transport of its clamped density. "" or the error.
 template <class Staging, class Run>
