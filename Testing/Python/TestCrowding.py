@@ -98,7 +98,7 @@ def run(length_over_radius, closed=False):
 
 
 for length, stages, area in ((2, 0, 0.01), (10, 0, 0.05), (14, 1, 0.045), (20, 1, 0.05),
-                             (40, 3, 0.07), (50, 4, 0.08), (60, 4, 0.11), (70, 5, 0.13),
+                             (40, 3, 0.07), (50, 4, 0.08), (60, 4, 0.11), (70, 6, 0.13),
                              (80, 7, 0.11), (95, 8, 0.18)):
     fig, errors, warnings = run(length)
     # From 60 the conformal map's own image folds (it says so, and that the map does not).

@@ -94,7 +94,8 @@ double measuredMeanAbsLogAreaRatio(const SurfaceMesh& surface, const std::vector
 }
 
 std::string checkCompositionInputs(const SurfaceMesh& surface, const std::vector<Vec2>& conformalUv,
-  const std::vector<Vec2>& samples, const std::vector<Vec2>& sampleImages)
+  const std::vector<Vec2>& samples, const std::vector<Vec2>& sampleImages,
+  const std::vector<double>& sampleHeights)
 {
   if (conformalUv.size() != surface.points.size())
   {
@@ -107,17 +108,32 @@ std::string checkCompositionInputs(const SurfaceMesh& surface, const std::vector
       std::to_string(samples.size()) + " samples and " + std::to_string(sampleImages.size()) +
       " images)";
   }
-  return {};
+  if (!sampleHeights.empty() && sampleHeights.size() != samples.size())
+  {
+    return "the transport gave " + std::to_string(sampleHeights.size()) + " heights for " +
+      std::to_string(samples.size()) + " samples";
+  }
+  const auto bad = std::find_if(
+    sampleHeights.begin(), sampleHeights.end(), [](double h) { return !std::isfinite(h); });
+  return bad == sampleHeights.end() ? std::string()
+                                    : "the transport's height of sample " +
+      std::to_string(bad - sampleHeights.begin()) + " is not a finite number";
 }
 
 // Step 1: every point's conformal image through the samples' interpolant, the boundary's
 // pushed onto the circle. False when `report` asks to abort.
 template <class Report>
 bool interpolate(const std::vector<Vec2>& conformalUv, const std::vector<int>& boundaryLoop,
-  const std::vector<Vec2>& samples, const std::vector<Vec2>& sampleImages, const Report& report,
-  CompositionResult& result)
+  const std::vector<Vec2>& samples, const std::vector<Vec2>& sampleImages,
+  const std::vector<double>& sampleHeights, const Report& report, CompositionResult& result)
 {
-  SampleInterpolant interpolant(samples, sampleImages);
+  // The power diagram's weights: |x - y_i|^2 - w_i = |x|^2 - 2 (<x, y_i> - h_i).
+  std::vector<double> weights(sampleHeights.empty() ? 0 : samples.size());
+  for (size_t i = 0; i < weights.size(); ++i)
+  {
+    weights[i] = dot(samples[i], samples[i]) - 2.0 * sampleHeights[i];
+  }
+  SampleInterpolant interpolant(samples, sampleImages, weights);
   std::tie(result.flippedSampleTriangles, result.flippedSampleTrianglesAfterUntangling) =
     interpolant.untangleImages();
   result.interpolatedUv.resize(conformalUv.size());
@@ -166,10 +182,11 @@ bool correct(const SurfaceMesh& surface, const std::vector<int>& boundaryLoop,
 CompositionResult composeWithInverseTransport(const SurfaceMesh& surface,
   const std::vector<Vec2>& conformalUv, const std::vector<int>& boundaryLoop,
   const std::vector<Vec2>& samples, const std::vector<Vec2>& sampleImages,
-  const CompositionOptions& options)
+  const CompositionOptions& options, const std::vector<double>& sampleHeights)
 {
   CompositionResult result;
-  result.status.error = checkCompositionInputs(surface, conformalUv, samples, sampleImages);
+  result.status.error =
+    checkCompositionInputs(surface, conformalUv, samples, sampleImages, sampleHeights);
   if (result.status.error.empty())
   {
     result.status.error = checkTargetAreaShares(surface, options);
@@ -188,7 +205,7 @@ CompositionResult composeWithInverseTransport(const SurfaceMesh& surface,
   };
 
   auto start = Clock::now();
-  if (!interpolate(conformalUv, boundaryLoop, samples, sampleImages, report, result))
+  if (!interpolate(conformalUv, boundaryLoop, samples, sampleImages, sampleHeights, report, result))
   {
     return result;
   }

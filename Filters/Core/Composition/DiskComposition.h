@@ -4,12 +4,13 @@
 // 1. Interpolation (the paper's composition). T^-1(y_i) is the centroid of the power cell W_i
 //    (for a sample on the unit circle: the centroid's direction on the circle, since T maps the
 //    boundary onto the boundary). Every mesh vertex of the conformal image is mapped by
-//    piecewise-linear interpolation over the Delaunay triangulation of the samples; a vertex in
-//    a circular segment outside that triangulation (between two boundary samples) is mapped
-//    by the same interpolation along the chord and a radial blend to the circle, so mesh
-//    boundary vertices end exactly on the circle.
+//    piecewise-linear interpolation over the samples' regular triangulation under the
+//    transport's weights, the dual of its power diagram (Delaunay when no heights are given);
+//    a vertex in a circular segment outside that triangulation (between two boundary samples)
+//    is mapped by the same interpolation along the chord and a radial blend to the circle, so
+//    mesh boundary vertices end exactly on the circle.
 // 2. Untangling. The centroids are not always in the order of their samples: a triangle of the
-//    samples' Delaunay triangulation may map flipped (hand_choi_53k: 270 of 9492), and every
+//    samples' triangulation may map flipped (hand_choi_53k: 270 of 9492 Delaunay ones), and every
 //    mesh triangle inside it would inherit the flip (the face subdivided to 1.09M points: 4329
 //    flipped mesh triangles, 1265 left after untangling them). So the sample images are
 //    untangled first, on the samples' triangulation (its hull, on the circle, stays there);
@@ -72,10 +73,13 @@ Vec2 boundaryArcMidpoint(const std::vector<Vec2>& cell);
 // `samples`: the Dirac positions y_i in the conformal disk; `sampleImages`: their T^-1, the
 // centroids of their power cells from the converged transport (for samples on the circle,
 // better boundaryArcMidpoint; images of those are put on the circle in any case).
+// `sampleHeights`: the transport's heights h_i (OTResult::heights), whose power diagram's dual,
+// the samples' regular triangulation, is then the interpolant's; empty: their Delaunay
+// triangulation.
 CompositionResult composeWithInverseTransport(const SurfaceMesh& surface,
   const std::vector<Vec2>& conformalUv, const std::vector<int>& boundaryLoop,
   const std::vector<Vec2>& samples, const std::vector<Vec2>& sampleImages,
-  const CompositionOptions& options = {});
+  const CompositionOptions& options = {}, const std::vector<double>& sampleHeights = {});
 
 } // namespace otparam
 

@@ -117,8 +117,9 @@ void compose(const AreaPreservingOptions& options, AreaPreservingResult& run)
   }
   try
   {
-    run.composition = composeWithInverseTransport(conformal.surface.mesh, run.startUv,
-      conformal.boundaryLoop, run.diracs, run.sampleImages, compositionOptions);
+    run.composition =
+      composeWithInverseTransport(conformal.surface.mesh, run.startUv, conformal.boundaryLoop,
+        run.diracs, run.sampleImages, compositionOptions, run.transport.result.heights);
     if (run.composition.status.aborted)
     {
       run.status.aborted = true;
@@ -201,7 +202,10 @@ std::string compositionFailure(const Composition& composed)
 }
 
 // The Diracs' spherical Delaunay triangulation for the composition: the sampler's when every
-// sample became a Dirac, else the dual of their Voronoi diagram.
+// sample became a Dirac, else the dual of their Voronoi diagram. (The dual of the transport's
+// power diagram, which the disk interpolates over, was tried on 2026-11-27: brain_choi_closed_48k
+// the same, spot_closed_3k's mean |log area ratio| 0.0093 -> 0.0099, TestCrowding's closed
+// finger better at some lengths and worse at others; docs/design.md.)
 std::vector<Triangle> diracTriangulation(
   const SphereSamplingStage& sampling, const SphereTransportStage& transport, std::size_t diracs)
 {
@@ -286,12 +290,17 @@ struct DiskStaging
     const std::unique_ptr<SourceMeasure> disk = makeUnitDiskSource();
     return runTransportStage(*disk, diracs, masses, options, maximumArcAngle);
   }
+  // Over the transport's regular triangulation where the start is unfolded (the stage corrects
+  // its areas), as the last composition; a folded start's stage over the Delaunay triangulation:
+  // over the regular one, TestCrowding's finger failed at L / rho = 80 and 95 (a later stage's
+  // sampling), where it had converged.
   static CompositionResult compose(const AreaPreservingResult& run, const SamplingStage&,
     const TransportStage& transport, const std::vector<Vec2>& diracs,
     const CompositionOptions& options)
   {
     return composeWithInverseTransport(run.conformal.surface.mesh, run.startUv,
-      run.conformal.boundaryLoop, diracs, inverseTransportOfDiracs(diracs, transport), options);
+      run.conformal.boundaryLoop, diracs, inverseTransportOfDiracs(diracs, transport), options,
+      options.correctAreas ? transport.result.heights : std::vector<double>());
   }
   static void adopt(AreaPreservingResult& run, const CompositionResult& composed)
   {

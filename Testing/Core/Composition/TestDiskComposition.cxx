@@ -2,7 +2,10 @@
 // untangling, area correction), on planar disks where the answer is known.
 #include "Composition/DiskComposition.h"
 #include "Mesh/DistortionMetrics.h"
+#include "OTTestProblems.h"
 #include "RingDisk.h"
+#include "Transport/PlanarSource.h"
+#include "Transport/SemiDiscreteOT.h"
 
 #include <gtest/gtest.h>
 
@@ -79,6 +82,68 @@ TEST(AreaPreservingComposition, LinearImagesAreInterpolatedExactly)
   }
   // Already area-preserving: the correction has nothing to do.
   EXPECT_LE(result.meanAbsLogAreaRatio, 1e-12);
+}
+
+TEST(AreaPreservingComposition, InterpolatesOverThePowerDiagramsDual)
+{
+  // Diracs crowded by masses of contrast 1e4 (OTTestProblems.h): the samples' Delaunay
+  // triangles also join Diracs whose cells do not touch, and their cells' centroids then often
+  // come in the other order; the regular triangulation of the transport's weights joins
+  // exactly the Diracs whose cells meet.
+  const std::unique_ptr<SourceMeasure> disk = makeUnitDiskSource();
+  const otparam::testing::PlanarMesh mesh = otparam::testing::makePlanarDisk(60);
+  const SurfaceMesh surface = flatSurface(mesh);
+  const std::vector<int> loop = boundaryOf(surface);
+  CompositionOptions options;
+  options.correctAreas = false;
+  const std::vector<Vec2> diracs = otparam::testing::randomInDisk(3000, 5, 0.95);
+  const OTResult crowded =
+    solveSemiDiscreteOT(*disk, diracs, otparam::testing::mixtureMasses(diracs, 1e4));
+  ASSERT_TRUE(crowded.converged);
+  const CompositionResult regular = composeWithInverseTransport(
+    surface, mesh.points, loop, diracs, crowded.centroids, options, crowded.heights);
+  const CompositionResult delaunay =
+    composeWithInverseTransport(surface, mesh.points, loop, diracs, crowded.centroids, options);
+  std::printf("sample triangles flipped by the centroids: regular %lld, Delaunay %lld\n",
+    static_cast<long long>(regular.flippedSampleTriangles),
+    static_cast<long long>(delaunay.flippedSampleTriangles));
+  EXPECT_LT(regular.flippedSampleTriangles, delaunay.flippedSampleTriangles / 2);
+
+  // A transport whose inverse is known everywhere: the uniform disk onto Diracs of equal mass
+  // on a sunflower spiral of the radial density (1 + a r^2) / (1 + a / 2), T^-1(p) =
+  // sqrt(F(|p|)) p / |p| with F(r) = r^2 (1 + a r^2 / 2) / (1 + a / 2).
+  const double a = 30.0;
+  const otparam::testing::RadialProblem problem = otparam::testing::radialProblem(2000, a);
+  const OTResult radial = solveSemiDiscreteOT(*disk, problem.diracs, problem.masses);
+  ASSERT_TRUE(radial.converged);
+  const CompositionResult exact = composeWithInverseTransport(
+    surface, mesh.points, loop, problem.diracs, radial.centroids, options, radial.heights);
+  ASSERT_EQ(exact.status.error, "");
+  double largest = 0.0;
+  for (size_t v = 0; v < mesh.points.size(); ++v)
+  {
+    const Vec2 p = mesh.points[v];
+    const double r = norm(p);
+    if (r > 0.0 && r < 0.9) // inside the Diracs' hull
+    {
+      const double image = std::sqrt(r * r * (1.0 + a * r * r / 2.0) / (1.0 + a / 2.0));
+      largest = std::max(largest, norm(exact.uv[v] - (image / r) * p));
+    }
+  }
+  std::printf("largest distance to T^-1 within radius 0.9: %.2e\n", largest);
+  EXPECT_LE(largest, 5e-3);
+
+  std::vector<double> wrong = radial.heights;
+  wrong.pop_back();
+  EXPECT_NE(composeWithInverseTransport(
+              surface, mesh.points, loop, problem.diracs, radial.centroids, options, wrong)
+              .status.error.find("heights"),
+    std::string::npos);
+  wrong.push_back(std::nan(""));
+  EXPECT_NE(composeWithInverseTransport(
+              surface, mesh.points, loop, problem.diracs, radial.centroids, options, wrong)
+              .status.error.find("not a finite number"),
+    std::string::npos);
 }
 
 TEST(AreaPreservingComposition, UntanglesFlipsAndCorrectsAreas)
