@@ -8,8 +8,9 @@
  * once, in the core (Filters/Core/Pipeline/AreaPreservingPipeline.h, which the command line
  * and the benchmarks call too); each is the one its own filter runs. The composition
  * (Filters/Core/Composition/DiskComposition.h) maps every sample to the centroid of its power cell,
- * every mesh vertex by piecewise-linear interpolation over the samples' Delaunay triangulation
- * (boundary vertices exactly on the circle), untangles any flipped triangle, and then, with
+ * every mesh vertex by piecewise-linear interpolation over the samples' regular triangulation
+ * under the transport's weights, the dual of its power diagram (boundary vertices exactly on
+ * the circle), untangles any flipped triangle, and then, with
  * AreaCorrection on (the default), moves vertices so that each triangle gets its surface area
  * fraction, which removes what the interpolation between a finite number of samples leaves. Both
  * figures, before and after the correction, are in the field data.
