@@ -161,6 +161,11 @@ constexpr int MaximumTransportStages = 30; // 1e300 / 1e10^30: every range doubl
 // SphereStaging::rebalanceOffset, tried in turn where the stages failed (TestCrowding's closed
 // finger: 0.3 alone leaves 52 failing, 0.15 alone 45; together 37-53 and 55-60).
 constexpr double StageBalanceOffsets[] = { 0.3, 0.15 };
+// The sphere's last resort, where the rebalanced stages failed too: each stage clamped to 1e3
+// instead of 1e10 (more, gentler stages). TestCrowding's closed finger: 54, 62, 65 and 68 then
+// converge (9-13 stages), where a clamp of 1e5 left 62 and 70 failing; as the first choice
+// it had made 36-40 fail (docs/design.md).
+constexpr double NarrowStageDensityRange = 1e3;
 
 double rangeOf(const std::vector<double>& density)
 {
@@ -168,13 +173,14 @@ double rangeOf(const std::vector<double>& density)
   return range.first == density.end() ? 1.0 : *range.second / *range.first;
 }
 
-std::vector<double> clampedForStage(const std::vector<double>& density)
+std::vector<double> clampedForStage(
+  const std::vector<double>& density, double range = StageDensityRange)
 {
   const double lowest = *std::min_element(density.begin(), density.end());
   std::vector<double> clamped = density;
   for (double& g : clamped)
   {
-    g = std::min(g, lowest * StageDensityRange);
+    g = std::min(g, lowest * range);
   }
   return clamped;
 }
@@ -267,6 +273,7 @@ struct DiskStaging
   // the unpeeled part at 85 and 95 (its boundary crosses itself), the peeled one at 90 (too
   // fine for the mesher); parameterizeDisk stages with the one, then the other.
   bool peel = false;
+  double densityRange = StageDensityRange;
   SamplingStage sample(const AreaPreservingResult& run, const std::vector<double>& density,
     const SamplerOptions& options) const
   {
@@ -326,6 +333,7 @@ struct SphereStaging
   // Balancing fully crushes the finger's tip further (its images collapse); the offsets tried
   // in turn, StageBalanceOffsets, were chosen on TestCrowding's closed finger (docs/design.md).
   double rebalanceOffset = 0.0;
+  double densityRange = StageDensityRange;
   void prepare(SphereParameterizationResult& run) const
   {
     if (!(this->rebalanceOffset > 0.0) || run.transportStages > 0)
@@ -333,7 +341,7 @@ struct SphereStaging
       return;
     }
     const std::vector<double> mass =
-      stageAreaShares<SphereStaging>(run, clampedForStage(run.startDensity));
+      stageAreaShares<SphereStaging>(run, clampedForStage(run.startDensity, this->densityRange));
     balanceMeasure(
       run.conformal.surface.mesh.triangles, mass, run.startSphere, this->rebalanceOffset, 50);
     std::vector<double> perPoint;
@@ -387,7 +395,7 @@ std::string transportStage(const AreaPreservingOptions& options, const Staging& 
   SamplerOptions samplerOptions = options.sampling;
   samplerOptions.progress = keepGoing;
   staging.prepare(run);
-  const std::vector<double> clamped = clampedForStage(run.startDensity);
+  const std::vector<double> clamped = clampedForStage(run.startDensity, staging.densityRange);
   // A folded start has no areas to aim at; its stage only widens the crowd, and the next one,
   // once the fold is untangled, corrects (correcting around a fold left the fold's rim too
   // long for a stage's sampler at L / rho = 80).
@@ -824,14 +832,18 @@ SphereParameterizationResult parameterizeSphere(
     [&]
     {
       transportInStages(options, SphereStaging{}, run);
-      for (const double offset : StageBalanceOffsets)
+      // A stage failed: the stages again, the first from a start rebalanced for it, then with
+      // the narrower clamp.
+      for (const double range : { StageDensityRange, NarrowStageDensityRange })
       {
-        if (run.sampling.status.ok() || run.sampling.status.aborted)
+        for (const double offset : StageBalanceOffsets)
         {
-          break;
+          if (run.sampling.status.ok() || run.sampling.status.aborted)
+          {
+            break;
+          }
+          transportInStages(options, SphereStaging{ offset, range }, run);
         }
-        // A stage failed: the stages again, the first from a start rebalanced for it.
-        transportInStages(options, SphereStaging{ offset }, run);
       }
       if (!run.sampling.status.ok())
       {
