@@ -185,10 +185,10 @@ public:
   ///@{
   /**
    * A thorough area correction: a gentler over-relaxation and about twice the sweeps. On every
-   * shared mesh both the area and the angle distortion end lower than with the default
-   * correction (hand_choi_53k: mean |log area ratio| 0.0159 -> 0.0143, mean angle distortion
-   * 45.45 -> 45.00 degrees), for about twice the correction's time (0.22 -> 0.39 s at 53k
-   * points). Default off.
+   * shared mesh the area distortion ends lower than with the default correction, and on all
+   * but hand_stein_810 (38.9 -> 39.3 degrees) the angle distortion too (hand_choi_53k: mean |log
+   * area ratio| 0.0132 -> 0.0110, mean angle distortion 44.80 -> 44.60 degrees), for about twice
+   * the correction's time (0.22 -> 0.39 s at 53k points). Default off.
    */
   vtkSetMacro(ThoroughAreaCorrection, bool);
   vtkGetMacro(ThoroughAreaCorrection, bool);
