@@ -46,33 +46,27 @@ public:
     points.reserve(samples.size());
     for (size_t i = 0; i < samples.size(); ++i)
     {
-      points.emplace_back(Point(K::Point_2(samples[i].x, samples[i].y), 0.0), static_cast<int>(i));
+      points.emplace_back(
+        Point(K::Point_2(samples[i].x, samples[i].y), weights.empty() ? 0.0 : weights[i]),
+        static_cast<int>(i));
       if (onCircle(samples[i]))
       {
         // T maps the circle onto the circle: a boundary sample's preimage is on it too.
         this->Images[i] = normalized(images[i]);
       }
     }
-    if (!weights.empty())
+    this->Triangulation.insert(points.begin(), points.end());
+    if (this->Triangulation.number_of_hidden_vertices() > 0)
     {
-      for (size_t i = 0; i < samples.size(); ++i)
-      {
-        points[i].first = Point(points[i].first.point(), weights[i]);
-      }
-      this->Triangulation.insert(points.begin(), points.end());
-      if (this->Triangulation.number_of_hidden_vertices() == 0)
-      {
-        return;
-      }
-      // A hidden sample (its cell empty: a transport stopped before converging) would have
-      // no place in the interpolant.
+      // A hidden sample (its cell empty: a transport stopped before converging) would have no
+      // place in the interpolant: the Delaunay triangulation instead.
       this->Triangulation.clear();
       for (auto& point : points)
       {
         point.first = Point(point.first.point(), 0.0);
       }
+      this->Triangulation.insert(points.begin(), points.end());
     }
-    this->Triangulation.insert(points.begin(), points.end());
   }
 
   // The triangles of the samples' triangulation whose images are flipped (the cell centroids

@@ -173,8 +173,7 @@ double rangeOf(const std::vector<double>& density)
   return range.first == density.end() ? 1.0 : *range.second / *range.first;
 }
 
-std::vector<double> clampedForStage(
-  const std::vector<double>& density, double range = StageDensityRange)
+std::vector<double> clampedForStage(const std::vector<double>& density, double range)
 {
   const double lowest = *std::min_element(density.begin(), density.end());
   std::vector<double> clamped = density;
