@@ -339,6 +339,20 @@ std::string validateDiracs(const std::vector<Vec2>& diracs, const std::vector<do
     listIds("have NaN or infinite coordinates", bad);
     return msg.str();
   }
+  for (size_t i = 0; i < diracs.size(); ++i)
+  {
+    // The power diagram's weights hold |y|^2.
+    if (!std::isfinite(dot(diracs[i], diracs[i])))
+    {
+      bad.push_back(i);
+    }
+  }
+  if (!bad.empty())
+  {
+    listIds("lie too far from the origin for double precision (|y|^2 overflows)", bad);
+    msg << "; the first is at (" << diracs[bad.front()].x << ", " << diracs[bad.front()].y << ")";
+    return msg.str();
+  }
   for (size_t i = 0; i < masses.size(); ++i)
   {
     if (!(std::isfinite(masses[i]) && masses[i] > 0.0))
@@ -666,6 +680,85 @@ OTResult solveValid(const SourceMeasure& source, const std::vector<Vec2>& diracs
 
 } // namespace
 
+namespace
+{
+// How far p lies outside the box [lo, hi] (0 inside).
+double distanceOutside(Vec2 lo, Vec2 hi, Vec2 p)
+{
+  return norm(
+    Vec2{ std::max({ lo.x - p.x, p.x - hi.x, 0.0 }), std::max({ lo.y - p.y, p.y - hi.y, 0.0 }) });
+}
+
+// Moving every Dirac by the same vector v leaves every power cell as it is under the same
+// heights (<x, v> is common to all of them), but Diracs far from the source lose digits in
+// the power diagram and the shrunk start crushes them together: 3e4 random Diracs in a unit
+// disk centred 1e3 away from the unit-disk source (300 of them centred 1e6 away) stopped at
+// the start; centred over the source they converge in 10 Newton iterations, as at 0. The
+// shift that brings the Diracs' coordinate-wise median to the centre of the source's inner
+// disk, when it lies farther from the source's bounding box than the box's size (else none:
+// Diracs over or near the source are solved where they are, to the bit as before). The
+// median, so that a few outliers do not move the others away.
+Vec2 shiftOntoSource(const SourceMeasure& source, const std::vector<Vec2>& diracs)
+{
+  std::vector<double> xs(diracs.size()), ys(diracs.size());
+  for (size_t i = 0; i < diracs.size(); ++i)
+  {
+    xs[i] = diracs[i].x;
+    ys[i] = diracs[i].y;
+  }
+  const auto middle = static_cast<std::ptrdiff_t>(diracs.size() / 2);
+  std::nth_element(xs.begin(), xs.begin() + middle, xs.end());
+  std::nth_element(ys.begin(), ys.begin() + middle, ys.end());
+  const Vec2 median{ xs[middle], ys[middle] };
+  Vec2 lo, hi, center;
+  double inner;
+  source.bounds(lo, hi);
+  source.innerDisk(center, inner);
+  return distanceOutside(lo, hi, median) > norm(hi - lo) ? median - center : Vec2{ 0.0, 0.0 };
+}
+
+// When a solve failed, what a Dirac far from the source (beyond FarFromSource times its size)
+// has to do with it; "" otherwise. One Dirac 1e6 away from the unit disk, among 300 over it,
+// stops the solve at its start: the start that gives it a cell crushes the others.
+constexpr double FarFromSource = 1e3;
+std::string farDiracNote(const SourceMeasure& source, const std::vector<Vec2>& diracs, Vec2 shift)
+{
+  Vec2 lo, hi;
+  source.bounds(lo, hi);
+  const double size = norm(hi - lo);
+  double farthest = 0.0;
+  size_t which = 0;
+  for (size_t i = 0; i < diracs.size(); ++i)
+  {
+    const double distance = distanceOutside(lo, hi, diracs[i] - shift); // as the solve saw it
+    if (distance > farthest)
+    {
+      farthest = distance;
+      which = i;
+    }
+  }
+  if (!(farthest > FarFromSource * size))
+  {
+    return {};
+  }
+  std::ostringstream note;
+  note << ". Dirac " << which << " lies " << farthest << " away from the source, whose size is "
+       << size
+       << ": the start that gives it a cell crushes the others; move the Diracs nearer the source";
+  return note.str();
+}
+
+std::vector<Vec2> shiftedOntoSource(const SourceMeasure& source, std::vector<Vec2> diracs)
+{
+  const Vec2 shift = diracs.empty() ? Vec2{ 0.0, 0.0 } : shiftOntoSource(source, diracs);
+  for (Vec2& y : diracs)
+  {
+    y = y - shift;
+  }
+  return diracs;
+}
+} // namespace
+
 OTResult solveSemiDiscreteOT(const SourceMeasure& source, const std::vector<Vec2>& diracs,
   const std::vector<double>& masses, const OTOptions& options)
 {
@@ -696,12 +789,17 @@ OTResult solveSemiDiscreteOT(const SourceMeasure& source, const std::vector<Vec2
     Traits(CGAL::make_property_map(points)))(order.begin(), order.end());
   std::vector<Vec2> sortedDiracs(n);
   std::vector<double> sortedMasses(n);
+  const Vec2 shift = shiftOntoSource(source, diracs);
   for (int k = 0; k < n; ++k)
   {
-    sortedDiracs[k] = diracs[order[k]];
+    sortedDiracs[k] = diracs[order[k]] - shift;
     sortedMasses[k] = masses[order[k]];
   }
   OTResult sorted = solveValid(source, sortedDiracs, sortedMasses, options);
+  if (!sorted.converged && !sorted.aborted)
+  {
+    sorted.message += farDiracNote(source, diracs, shift);
+  }
   OTResult result = sorted;
   auto unsort = [&](const auto& from, auto& to)
   {
@@ -717,6 +815,13 @@ OTResult solveSemiDiscreteOT(const SourceMeasure& source, const std::vector<Vec2
   unsort(sorted.heights, result.heights);
   unsort(sorted.cellMass, result.cellMass);
   unsort(sorted.centroids, result.centroids);
+  for (int i = 0; i < static_cast<int>(result.centroids.size()); ++i)
+  {
+    if (!(result.cellMass[i] > 0.0))
+    {
+      result.centroids[i] = diracs[i]; // an empty cell's, unshifted
+    }
+  }
   return result;
 }
 
@@ -726,8 +831,9 @@ CellMeasures computeCellMeasures(
   OTResult unusedTiming;
   PowerDiagram diagram;
   Evaluation ev;
-  evaluate(source, diracs, std::vector<Height>(heights.begin(), heights.end()), diagram, ev,
-    unusedTiming, PowerDiagram::WhenHidden::FindAll, false);
+  evaluate(source, shiftedOntoSource(source, diracs),
+    std::vector<Height>(heights.begin(), heights.end()), diagram, ev, unusedTiming,
+    PowerDiagram::WhenHidden::FindAll, false);
   CellMeasures measures;
   measures.mass = ev.cellMass;
   measures.centroid.resize(diracs.size());
@@ -744,7 +850,8 @@ PowerDiagramGeometry computePowerDiagramGeometry(const SourceMeasure& source,
 {
   PowerDiagramGeometry geometry;
   PowerDiagram diagram;
-  diagram.build(diracs, std::vector<Height>(heights.begin(), heights.end()));
+  diagram.build(
+    shiftedOntoSource(source, diracs), std::vector<Height>(heights.begin(), heights.end()));
   geometry.triangles = diagram.triangles();
   Vec2 lo, hi;
   sourceBox(source, lo, hi);

@@ -56,12 +56,13 @@ std::vector<double> massesScaledTo(const std::vector<double>& masses, double tot
 // properties), or "".
 std::string checkTransportOptions(const OTOptions& options, double maximumArcAngle);
 
-// Validates diracs/masses (finite, positive, distinct) and returns an empty string or a message
-// naming the offending ids.
+// Validates diracs/masses (finite, |y|^2 finite, positive, distinct) and returns an empty
+// string or a message naming the offending ids.
 std::string validateDiracs(const std::vector<Vec2>& diracs, const std::vector<double>& masses);
 
 // Solves for heights h such that every power cell W_i(h) ∩ domain has source measure masses[i]
-// (masses are rescaled to the source's total). Diracs may lie outside the domain.
+// (masses are rescaled to the source's total). Diracs may lie outside the domain; Diracs all
+// far from it are solved moved over it (the same cells under the same heights).
 OTResult solveSemiDiscreteOT(const SourceMeasure& source, const std::vector<Vec2>& diracs,
   const std::vector<double>& masses, const OTOptions& options = OTOptions());
 

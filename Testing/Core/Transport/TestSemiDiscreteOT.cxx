@@ -63,6 +63,44 @@ TEST(SemiDiscreteOT, UniformMassesOnDisk)
     EXPECT_LE(norm(c), 1.0);
 }
 
+// Diracs far from the source, all moved by one vector: the same cells under the same heights
+// (<x, v> is common to every cell's affine function), solved as if they sat over the source.
+// Before, 300 Diracs centred 1e6 away stopped at the start (every damping rejected) and 3e4
+// centred 1e3 away too; a few outliers (one Dirac 1e5 away) still keep the others in place.
+TEST(SemiDiscreteOT, DiracsFarFromTheSourceGiveTheCellsOfTheirTranslateOverIt)
+{
+  auto disk = makeUnitDiskSource();
+  const auto y = randomInDisk(300, 3);
+  std::vector<double> masses(y.size());
+  for (size_t i = 0; i < masses.size(); ++i)
+    masses[i] = 1.0 + static_cast<double>(i % 17);
+  const OTResult near = solveSemiDiscreteOT(*disk, y, masses);
+  ASSERT_TRUE(near.converged) << near.message;
+  for (const Vec2 shift : { Vec2{ 1e6, -3e5 }, Vec2{ -40.0, 7.0 } })
+  {
+    std::vector<Vec2> moved = y;
+    for (Vec2& p : moved)
+      p = p + shift;
+    const OTResult far = solveSemiDiscreteOT(*disk, moved, masses);
+    ASSERT_TRUE(far.converged) << far.message;
+    EXPECT_LE(far.iterations, near.iterations + 3);
+    for (size_t i = 0; i < y.size(); ++i)
+      EXPECT_LT(norm(far.centroids[i] - near.centroids[i]), 1e-8) << i;
+    // The heights are those of the moved Diracs: their own cells, from scratch, have the masses.
+    const CellMeasures cells = computeCellMeasures(*disk, moved, far.heights);
+    for (size_t i = 0; i < y.size(); ++i)
+      EXPECT_NEAR(cells.mass[i], far.mass[i], 1e-9 * far.mass[i]) << i;
+  }
+  std::vector<Vec2> outlier = y;
+  outlier[7] = { 1e5, 0.0 };
+  EXPECT_TRUE(solveSemiDiscreteOT(*disk, outlier, masses).converged);
+  // One 1e6 away stops the solve at its start (measured); the message then says why.
+  outlier[7] = { 1e6, 0.0 };
+  const OTResult stuck = solveSemiDiscreteOT(*disk, outlier, masses);
+  if (!stuck.converged)
+    EXPECT_NE(stuck.message.find("Dirac 7 lies"), std::string::npos) << stuck.message;
+}
+
 // The same problem gives the same bits wherever malloc puts the triangulation's face blocks.
 // (CGAL's edge iterator reports an edge from the face at the lower address; the flips used to
 // start from that order, so runs after other work, or in another process, differed in the
@@ -224,6 +262,14 @@ TEST(SemiDiscreteOT, RejectsBadDiracs)
   EXPECT_NE(validateDiracs({ { 0, 0 }, { 0.5, 0 } }, { 1, 0 }).find("Mass"), std::string::npos);
   EXPECT_NE(validateDiracs({ { 0, 0 }, { 0.5, 0 } }, { -1, 1 }).find("ids 0"), std::string::npos);
   EXPECT_NE(validateDiracs({ { 0, 0 }, { 0.5, 0 }, { 0, 0 } }, { 1, 1, 1 }).find("ids 0 2"),
+    std::string::npos);
+  // Found by the fuzzer (transport-plane, seed 11, case 152): a Dirac at 1e300 made the start's
+  // heights infinite, and the transport ended without an error.
+  const std::string far = validateDiracs({ { 0, 0 }, { 0.5, 0 }, { 0, 1e300 } }, { 1, 1, 1 });
+  EXPECT_NE(far.find("too far from the origin"), std::string::npos) << far;
+  EXPECT_NE(far.find("ids 2"), std::string::npos) << far;
+  EXPECT_NE(solveSemiDiscreteOT(*disk, { { 0, 0 }, { 0.5, 0 }, { 0, 1e300 } }, { 1, 1, 1 })
+              .message.find("too far"),
     std::string::npos);
 }
 
