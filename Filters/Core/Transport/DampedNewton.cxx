@@ -216,6 +216,12 @@ constexpr double DampedResidual = 1e-6;
 // 1e4 among 1e6) is not needed while the error is still large.
 constexpr double QuadraticShare = 1e-2;
 constexpr double ToleranceShare = 0.1;
+// An accepted step shorter than the first iteration's search could ever try (40 halvings from
+// 1/2): the steps have collapsed, and KMT's test, (1 - lambda / 2) |g| rounding to |g|, accepts
+// steps that change nothing. A fuzzed disk of 271 points (otparam_fuzz --entry pipeline-disk
+// --seed 13 --case 258) ran 2 x 200 such iterations of 5453 Diracs, steps down to 1e-40 at a
+// relative error of 1e5, for 14 s (60 s beside other work) before its stage failed.
+constexpr double UselessStep = 1e-12;
 
 // The iteration's state: the problem, the targets and the last accepted step.
 class NewtonIteration
@@ -278,6 +284,15 @@ public:
         msg << "Newton step rejected at every damping down to about " << -2.0 * lambda << " after "
             << it << " iterations (relative error " << this->Report.relativeError
             << "; the tolerance may be below what double precision allows here)";
+        this->Report.message = msg.str();
+        return;
+      }
+      if (lambda < UselessStep)
+      {
+        std::ostringstream msg;
+        msg << "Newton steps fell to " << lambda << " after " << it
+            << " iterations without lowering the error (relative error "
+            << this->Report.relativeError << "): stalled";
         this->Report.message = msg.str();
         return;
       }
