@@ -791,11 +791,12 @@ OTResult solveSemiDiscreteOT(const SourceMeasure& source, const std::vector<Vec2
   unsort(sorted.heights, result.heights);
   unsort(sorted.cellMass, result.cellMass);
   unsort(sorted.centroids, result.centroids);
-  for (int i = 0; i < static_cast<int>(result.centroids.size()); ++i)
+  const bool shifted = shift.x != 0.0 || shift.y != 0.0;
+  for (int i = 0; shifted && i < static_cast<int>(result.centroids.size()); ++i)
   {
     if (!(result.cellMass[i] > 0.0))
     {
-      result.centroids[i] = diracs[i]; // an empty cell's, unshifted
+      result.centroids[i] = diracs[i]; // an empty cell's centroid is its Dirac, unshifted
     }
   }
   return result;
