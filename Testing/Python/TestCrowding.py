@@ -2,10 +2,13 @@
 crowded by the conformal map into a part of the disk whose area density grows like
 exp(2 L / rho). One transport converges while that range is below ~3e12 (L / rho = 14) and
 stopped at its start beyond; the disk map now transports in stages above 1e12 (field data
-TransportStages). Measured with default properties: converged with no flip up to L / rho = 95
-(exp(190) = 3.4e82 in theory; 8 stages; mean |log area ratio| 0.003 at L / rho = 2, 0.031 at
-14, 0.037 at 20, 0.049 at 40, 0.061 at 50, 0.081 at 60, 0.098 at 70, 0.081 at 80, 0.091 at
-85, 0.17 at 90, 0.13 at 95). Since 2026-11-27 a stage whose start is unfolded corrects its map's areas towards its
+TransportStages). Measured with default properties: converged with no flip up to L / rho = 120
+(exp(240) = 1.7e104 in theory; 10 stages; mean |log area ratio| 0.003 at L / rho = 2, 0.031 at
+14, 0.037 at 20, 0.049 at 40, 0.061 at 50, 0.046 at 60, 0.051 at 70, 0.065 at 80, 0.068 at
+85, 0.065 at 90, 0.087 at 95, 0.076 at 100, 0.108 at 120). From 60 on, where the conformal
+image folds, the stages start from the conformal map centred at the finger's tip and written
+in polar form (GreenDiskMap.h), whose images keep their relative precision down to ~1e-300
+(until 2026-11-27, later, the limit was 95: 8 stages, 0.13). Since 2026-11-27 a stage whose start is unfolded corrects its map's areas towards its
 clamped density's shares; before, the stages' mesh-scale errors piled up (0.041 at 14, 0.045 at
 20, 0.083 at 40, 0.10 at 50, 0.155 at 60, 0.171 at 70, one stage more at 60 and 70) and at 80
 the last transport started from triangles crushed 1e8-fold between sound ones: 3963 flipped
@@ -17,9 +20,11 @@ stage then samples the unfolded part and the next one untangles the fold at the 
 stage gave the finger (until 2026-11-27 the first stage's sampling failed at 60). At 85 and 95
 that unfolded part's boundary crosses itself (positive triangles lie across the fold), and the
 stages run again on the unfolded parts peeled of them. At 100 a stage's sampling fails (its
-domain is too fine for double precision), and the error names the crowding, the stage that
-failed and what to do, never only a solver's state (until 2026-11-27, with the peeling, CGAL's
-mesher crashed there). The same finger on a closed surface goes to the sphere, staged
+domain is too fine for double precision); the centred start maps it, and at 150 its stages fail
+on the anisotropy an area-preserving map of such a finger needs (its triangles ~2 L / rho times
+longer than wide at the finger's base): the error names the crowding, the stage that failed
+and what to do, never only a solver's state (until 2026-11-27, with the peeling, CGAL's mesher
+crashed at 100). The same finger on a closed surface goes to the sphere, staged
 the same way, up to L / rho = 53 (until 2026-11-27 up to 36: from 38 the first stage's transport
 failed, most of its mass within 8 degrees of one point; the stages now run again from a start
 Moebius-rebalanced for the first stage's clamped density, and each fold they leave is healed
@@ -98,8 +103,8 @@ def run(length_over_radius, closed=False):
 
 
 for length, stages, area in ((2, 0, 0.01), (10, 0, 0.05), (14, 1, 0.045), (20, 1, 0.05),
-                             (40, 3, 0.07), (50, 4, 0.08), (60, 4, 0.11), (70, 6, 0.13),
-                             (80, 7, 0.11), (95, 8, 0.18)):
+                             (40, 3, 0.07), (50, 4, 0.08), (60, 5, 0.07), (70, 6, 0.08),
+                             (80, 7, 0.09), (95, 8, 0.12), (100, 8, 0.11), (120, 10, 0.15)):
     fig, errors, warnings = run(length)
     # From 60 the conformal map's own image folds (it says so, and that the map does not).
     folds = length >= 60
@@ -116,11 +121,11 @@ for length, stages, area in ((2, 0, 0.01), (10, 0, 0.05), (14, 1, 0.045), (20, 1
         check(fig["ConformalMaximumAbsLogAreaRatio"] >= 99.0,
               "L/rho 50: the conformal area density spans e^99")
 
-fig, errors, warnings = run(100)
+fig, errors, warnings = run(150)
 text = errors.text().lower()
 check(not fig and "crowds part of the surface" in text and "area density spans" in text
       and "of the staged transport" in text and "cut the surface open" in text,
-      f"L/rho 100: an error names the crowding, the failed stage and what to do ({errors.text()})")
+      f"L/rho 150: an error names the crowding, the failed stage and what to do ({errors.text()})")
 
 # Closed, onto the sphere (Domain Automatic): one transport up to L / rho = 14 before the
 # stages (at 17 the composition failed, at 20 the transport stopped at its start and 1579

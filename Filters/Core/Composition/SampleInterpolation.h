@@ -11,6 +11,8 @@
 #include <CGAL/Regular_triangulation_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
+#include <complex>
+
 namespace otparam
 {
 namespace composition
@@ -67,6 +69,7 @@ public:
       }
       this->Triangulation.insert(points.begin(), points.end());
     }
+    this->PinnedSimilarity = this->similarityAtPinnedSample();
   }
 
   // The triangles of the samples' triangulation whose images are flipped (the cell centroids
@@ -147,9 +150,29 @@ public:
       const Vec2 a = this->position(face, 0), b = this->position(face, 1),
                  c = this->position(face, 2);
       const double area = cross(b - a, c - a);
-      const double wa = cross(b - p, c - p) / area, wb = cross(c - p, a - p) / area;
-      const double wc = 1.0 - wa - wb;
-      return wa * this->image(face, 0) + wb * this->image(face, 1) + wc * this->image(face, 2);
+      double w[3] = { cross(b - p, c - p) / area, cross(c - p, a - p) / area,
+        cross(a - p, b - p) / area };
+      // The weights sum to 1 through the last corner's, or through that of a corner pinned at
+      // the origin (a staged transport's protrusion tip, SamplerOptions::sampleAtOrigin): the
+      // other two, cross products with p, then keep their relative precision at points
+      // 1e-100 from it, which 1 minus two weights near 1 and 0 would round away.
+      const int k = this->pinnedAtOrigin(face, 0) ? 0 : (this->pinnedAtOrigin(face, 1) ? 1 : 2);
+      w[k] = 1.0 - w[(k + 1) % 3] - w[(k + 2) % 3];
+      const Vec2 linear =
+        w[0] * this->image(face, 0) + w[1] * this->image(face, 1) + w[2] * this->image(face, 2);
+      if (!this->pinnedAtOrigin(face, k))
+      {
+        return linear;
+      }
+      // Around the pinned sample the map goes over from the fan's piecewise-linear map (on the
+      // far edges) to one similarity (at the origin): the protrusion's rings, all inside the
+      // fan, keep their shape. Linear over the fan, each stage would bend them by its fan's
+      // sectors and the bends would compound, stage after stage, into folds (TestCrowding's
+      // finger at L / rho = 100 folded at stage 4).
+      const Vec2 similar = { this->PinnedSimilarity.real() * p.x -
+          this->PinnedSimilarity.imag() * p.y,
+        this->PinnedSimilarity.imag() * p.x + this->PinnedSimilarity.real() * p.y };
+      return (1.0 - w[k]) * linear + w[k] * similar;
     }
     outsideHull = true;
     const int infiniteIndex = face->index(this->Triangulation.infinite_vertex());
@@ -166,6 +189,40 @@ private:
     return { q.x(), q.y() };
   }
   Vec2 image(RT::Face_handle f, int k) const { return this->Images[f->vertex(k)->info()]; }
+  // The conformal part of the fan's linear maps around the sample pinned at the origin (with
+  // its image), each weighted by its angle there; 0 without such a sample.
+  std::complex<double> similarityAtPinnedSample() const
+  {
+    std::complex<double> sum = 0.0;
+    double angles = 0.0;
+    for (auto f = this->Triangulation.finite_faces_begin();
+         f != this->Triangulation.finite_faces_end(); ++f)
+    {
+      for (int k = 0; k < 3; ++k)
+      {
+        if (!this->pinnedAtOrigin(f, k))
+        {
+          continue;
+        }
+        const Vec2 a = this->position(f, RT::ccw(k)), b = this->position(f, RT::cw(k));
+        const Vec2 ia = this->image(f, RT::ccw(k)), ib = this->image(f, RT::cw(k));
+        // B with B a = ia, B b = ib: B = [ia ib] [a b]^-1.
+        const double det = cross(a, b);
+        const double b00 = (ia.x * b.y - ib.x * a.y) / det, b01 = (ib.x * a.x - ia.x * b.x) / det;
+        const double b10 = (ia.y * b.y - ib.y * a.y) / det, b11 = (ib.y * a.x - ia.y * b.x) / det;
+        const double angle = std::atan2(det, dot(a, b));
+        sum += angle * std::complex<double>(0.5 * (b00 + b11), 0.5 * (b10 - b01));
+        angles += angle;
+      }
+    }
+    return angles > 0.0 ? sum / angles : 0.0;
+  }
+
+  bool pinnedAtOrigin(RT::Face_handle f, int k) const
+  {
+    const Vec2 q = this->position(f, k), image = this->image(f, k);
+    return q.x == 0.0 && q.y == 0.0 && image.x == 0.0 && image.y == 0.0;
+  }
 
   // p lies beyond the hull edge ab. When a and b are on the circle, p is in the circular
   // segment they cut off: it goes along the chord like the interpolant (so the map stays
@@ -193,6 +250,7 @@ private:
 
   RT Triangulation;
   std::vector<Vec2> Images;
+  std::complex<double> PinnedSimilarity = 0.0;
   RT::Face_handle Hint;
 };
 

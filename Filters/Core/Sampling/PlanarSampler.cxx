@@ -1400,6 +1400,29 @@ void sampleConvex(
     },
     [&] { return finishCandidate(field, options, *source, refined, result.sourceMass); });
 }
+// SamplerOptions::sampleAtOrigin: the sample nearest the origin moved onto it, the masses
+// integrated again. False with the result's error set when the source cannot be built.
+bool moveNearestSampleToOrigin(const DensityField& field, SamplerResult& result)
+{
+  if (result.samples.empty())
+  {
+    return true;
+  }
+  const auto nearest = std::min_element(result.samples.begin(), result.samples.end(),
+    [](const Vec2& a, const Vec2& b) { return dot(a, a) < dot(b, b); });
+  *nearest = Vec2{ 0.0, 0.0 };
+  std::string error;
+  const auto source = field.makeSource(error);
+  if (!source)
+  {
+    result.status.error = error;
+    return false;
+  }
+  const Candidate c = massesOf(*source, result.samples, result.sourceMass);
+  result.mass = c.mass;
+  result.massCoefficientOfVariation = c.coefficientOfVariation;
+  return true;
+}
 } // namespace
 
 SamplerResult sampleDensity(const DensityField& field, const SamplerOptions& options)
@@ -1447,6 +1470,10 @@ SamplerResult sampleDensity(const DensityField& field, const SamplerOptions& opt
       return result;
     }
     if (result.status.aborted || !result.status.error.empty())
+    {
+      return result;
+    }
+    if (options.sampleAtOrigin && !moveNearestSampleToOrigin(field, result))
     {
       return result;
     }

@@ -34,6 +34,9 @@ struct SamplerOptions
   long long numberOfSamples = 1000;            // target; the threshold eps follows from it
   long long maximumNumberOfSamples = 10000000; // hard cap on the refinement
   double minimumAngleDegrees = 30.0;
+  // Plane only: the sample nearest the origin is moved onto it before the masses are integrated
+  // (a staged transport of a protrusion whose tip the map put at the origin keeps it there).
+  bool sampleAtOrigin = false;
   // Called with the fraction done; returning false aborts.
   std::function<bool(double)> progress;
 };
