@@ -542,33 +542,16 @@ void transportInStages(const AreaPreservingOptions& options, const Staging& stag
 }
 
 // The disk's staged transports, tried in turn until one maps: from the conformal map, from its
-// unfolded part peeled (when the conformal image folds) and from the conformal map centred at
-// the protrusion's tip (GreenDiskMap.h), whose images keep their relative precision. A folded
-// conformal image has already lost the tip's precision, so there the centred start goes first:
-// on TestCrowding's finger at L / rho = 60-95 its maps were better at every length (mean |log
-// area ratio| 0.052-0.081 against 0.074-0.174) and no slower; below 60 the usual start is as
-// good (40: 0.041 against 0.050) and the centred one is the last resort. Sets
-// run.sampling.status as transportInStages.
+// unfolded part peeled (when the conformal image folds), and from the conformal map centred at
+// the protrusion's tip (GreenDiskMap.h), whose images keep their relative precision. The
+// centred start maps TestCrowding's finger up to L / rho = 120 where the others fail from 100,
+// and it mapped that finger better at 60-95 (mean |log area ratio| 0.046-0.087 against
+// 0.074-0.174); but on coarser tubes (8 points per ring) the others did better (L = 60 cells:
+// 0.080 against 0.25; with a second finger of 30 cells 0.12 against a transport that did not
+// converge), so it comes last. Where every attempt fails, the user reads the error of the one
+// that got furthest. Sets run.sampling.status as transportInStages.
 void transportDiskInStages(const AreaPreservingOptions& options, AreaPreservingResult& run)
 {
-  const bool folded = run.conformal.figures.flippedTriangles > 0;
-  bool centredTried = false;
-  // False when the centred map could not be made (or folds) and nothing was staged.
-  const auto fromTheTip = [&]
-  {
-    centredTried = true;
-    const GreenDiskMap green = computeGreenDiskMap(
-      run.conformal.surface.mesh, run.conformal.boundaryLoop, -1, run.conformal.map.alignVertex);
-    if (!green.status.ok() || anyFolded(green.uv, run.conformal.surface.mesh.triangles))
-    {
-      return false;
-    }
-    DiskStaging centred;
-    centred.centredStart = green.uv;
-    transportInStages(options, centred, run);
-    return true;
-  };
-  // Where every attempt fails, the user reads the error of the one that got furthest.
   Status furthest;
   int furthestStages = -1;
   const auto failed = [&]
@@ -581,19 +564,22 @@ void transportDiskInStages(const AreaPreservingOptions& options, AreaPreservingR
     }
     return stopped;
   };
-  if (folded && rangeOf(run.conformal.areaDensityPerTriangle) > CrowdedDensityRange &&
-    fromTheTip() && !failed())
-  {
-    return;
-  }
   transportInStages(options, DiskStaging{}, run);
-  if (failed() && folded)
+  if (failed() && run.conformal.figures.flippedTriangles > 0)
   {
     transportInStages(options, DiskStaging{ true }, run);
   }
-  if (failed() && !centredTried)
+  if (!failed())
   {
-    fromTheTip();
+    return;
+  }
+  const GreenDiskMap green = computeGreenDiskMap(
+    run.conformal.surface.mesh, run.conformal.boundaryLoop, -1, run.conformal.map.alignVertex);
+  if (green.status.ok() && !anyFolded(green.uv, run.conformal.surface.mesh.triangles))
+  {
+    DiskStaging centred;
+    centred.centredStart = green.uv;
+    transportInStages(options, centred, run);
   }
   if (failed())
   {

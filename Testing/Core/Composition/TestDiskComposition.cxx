@@ -84,6 +84,48 @@ TEST(AreaPreservingComposition, LinearImagesAreInterpolatedExactly)
   EXPECT_LE(result.meanAbsLogAreaRatio, 1e-12);
 }
 
+// A crowded finger's tip at the origin (the staged transport's centred start): mesh rings down
+// to 1e-140 around a sample pinned at the origin with its image there. Each point keeps its
+// relative position: the weights sum to 1 through the pinned corner (1 minus two weights near
+// 1 and 0 would round the deep rings onto the origin).
+TEST(AreaPreservingComposition, PointsNearASamplePinnedAtTheOriginKeepTheirRelativePrecision)
+{
+  const otparam::testing::PlanarMesh mesh = otparam::testing::makePlanarDisk(13);
+  std::vector<Vec2> uv;
+  for (const Vec2& p : mesh.points)
+  {
+    const double r = norm(p);
+    uv.push_back(r > 0.0 && r < 1.0 ? (std::exp(-350.0 * (1.0 - r)) / r) * p : p);
+  }
+  const otparam::testing::PlanarMesh samples = otparam::testing::makePlanarDisk(6);
+  ASSERT_EQ(norm(samples.points[0]), 0.0);
+  const double c = std::cos(0.3), s = std::sin(0.3);
+  std::vector<Vec2> images;
+  for (const Vec2& p : samples.points)
+  {
+    images.push_back({ c * p.x - s * p.y, s * p.x + c * p.y });
+  }
+  SurfaceMesh surface = flatSurface(mesh);
+  CompositionOptions options;
+  options.correctAreas = false;
+  const CompositionResult result =
+    composeWithInverseTransport(surface, uv, boundaryOf(surface), samples.points, images, options);
+  ASSERT_EQ(result.status.error, "");
+  EXPECT_EQ(result.flippedTriangles, 0);
+  double worst = 0.0, deepest = 1.0;
+  for (size_t v = 0; v < uv.size(); ++v)
+  {
+    const Vec2 p = uv[v], rotated = { c * p.x - s * p.y, s * p.x + c * p.y };
+    if (norm(p) > 0.0)
+    {
+      worst = std::max(worst, norm(result.uv[v] - rotated) / norm(p));
+      deepest = std::min(deepest, norm(p));
+    }
+  }
+  EXPECT_LT(deepest, 1e-130);
+  EXPECT_LT(worst, 1e-12);
+}
+
 TEST(AreaPreservingComposition, InterpolatesOverThePowerDiagramsDual)
 {
   // Diracs crowded by masses of contrast 1e4 (OTTestProblems.h): the samples' Delaunay

@@ -278,12 +278,12 @@ TEST(Pipeline, StagedTransportWidensACrowdedFinger)
   expectStagedMap(20.0, 1, 0.06, false);
 }
 
-// At L / rho = 60 the conformal image folds the finger's tip (222 triangles). The stages then
-// start from the conformal map centred at the tip in polar form (GreenDiskMap.h), which resolves
-// it: 5 stages, mean |log area ratio| 0.046. (Before, from the folded image: 4 stages sampling
-// around the fold and untangling it later, 0.074-0.081; before 2026-11-27 an error.)
+// At L / rho = 60 the conformal image folds the finger's tip (222 triangles): the stages sample
+// around the fold and untangle it later (before 2026-11-27 the first stage failed there). Once
+// unfolded, a stage corrects its map's areas towards its clamped density's shares (without it:
+// 5 stages and mean |log area ratio| 0.155; now 4 and 0.081).
 TEST(Pipeline, StagedTransportGetsAroundAFoldedFinger)
 {
-  expectStagedMap(60.0, 5, 0.07, true);
+  expectStagedMap(60.0, 4, 0.11, true);
 }
 } // namespace otparam

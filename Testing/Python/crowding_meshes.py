@@ -1,0 +1,106 @@
+"""The crowding tests' surfaces (TestCrowding.py on the disk, TestCrowdingSphere.py on the
+sphere) and the run both use."""
+
+import math
+
+from otparam import vtkAreaPreservingParam
+from otparam_test_utils import MessageRecorder, field_value, make_domain
+from vtkmodules.vtkCommonCore import vtkCommand
+
+
+def finger(length_over_radius, rho=0.2, n=24, closed=False):
+    """The disk with a finger; closed: with a half sphere below the disk (genus 0)."""
+    h = 2 * math.pi / n  # spacing relative to the local radius
+    rings = []  # (r, z)
+    if closed:
+        below = max(2, int(round((math.pi / 2) / h)))
+        rings += [(math.cos(a), math.sin(a))
+                  for a in (-math.pi / 2 + k * (math.pi / 2) / below for k in range(1, below))]
+    r = 1.0
+    while r > rho * (1 + 0.5 * h):
+        rings.append((r, 0.0))
+        r *= math.exp(-h)
+    # A sharp bend from the plane into the tube, as scans have.
+    z = 0.0
+    length = length_over_radius * rho
+    while z < length:
+        rings.append((rho, z))
+        z += h * rho
+    cap = max(2, int(round((math.pi / 2) / h)))
+    for k in range(cap):
+        a = (k / cap) * math.pi / 2
+        rings.append((rho * math.cos(a), length + rho * math.sin(a)))
+    points, triangles = [], []
+    for k, (r, z) in enumerate(rings):
+        off = 0.5 * (k % 2)
+        for j in range(n):
+            a = 2 * math.pi * (j + off) / n
+            points.append((r * math.cos(a), r * math.sin(a), z))
+    for k in range(len(rings) - 1):
+        a0, b0 = k * n, (k + 1) * n
+        for j in range(n):
+            j1 = (j + 1) % n
+            if k % 2 == 0:
+                triangles += [(a0 + j, b0 + j, a0 + j1), (a0 + j1, b0 + j, b0 + j1)]
+            else:
+                triangles += [(a0 + j, b0 + j, b0 + j1), (a0 + j, b0 + j1, a0 + j1)]
+    tip = len(points)
+    points.append((0.0, 0.0, length + rho))
+    last = (len(rings) - 1) * n
+    for j in range(n):
+        triangles.append((last + j, tip, last + (j + 1) % n))
+    if closed:
+        south = len(points)
+        points.append((0.0, 0.0, -1.0))
+        triangles += [(j, (j + 1) % n, south) for j in range(n)]
+    return make_domain(points, triangles)
+
+
+def square_fingers(lengths, n=24):
+    """An n x n grid of unit cells with, per finger, a 2 x 2-cell hole whose 8-point loop is
+    extruded into a square tube of that many cells (one ring per cell), capped by a point:
+    coarser tubes than finger()'s, several on one disk."""
+    index, points, triangles = {}, [], []
+
+    def point(x, y, z=0.0):
+        if (x, y, z) not in index:
+            index[(x, y, z)] = len(points)
+            points.append((float(x), float(y), float(z)))
+        return index[(x, y, z)]
+    centres = [(4 + 6 * k, n // 2) for k in range(len(lengths))]
+    holes = {(cx + i, cy + j) for cx, cy in centres for i in (-1, 0) for j in (-1, 0)}
+    for i in range(n):
+        for j in range(n):
+            if (i, j) in holes:
+                continue
+            a, b, c, d = point(i, j), point(i + 1, j), point(i + 1, j + 1), point(i, j + 1)
+            triangles += [(a, b, c), (a, c, d)] if (i + j) % 2 else [(a, b, d), (b, c, d)]
+    for (cx, cy), length in zip(centres, lengths):
+        loop = [(cx - 1, cy - 1), (cx, cy - 1), (cx + 1, cy - 1), (cx + 1, cy),
+                (cx + 1, cy + 1), (cx, cy + 1), (cx - 1, cy + 1), (cx - 1, cy)]
+        previous = [point(x, y) for x, y in loop]
+        for k in range(1, length + 1):
+            ring = [point(x, y, -k) for x, y in loop]
+            for m in range(8):
+                a, b = previous[m], previous[(m + 1) % 8]
+                triangles += [(a, b, ring[m]), (b, ring[(m + 1) % 8], ring[m])]
+            previous = ring
+        tip = point(cx, cy, -length - 1)
+        triangles += [(previous[(m + 1) % 8], tip, previous[m]) for m in range(8)]
+    return make_domain(points, triangles)
+
+
+def run(length_over_radius, closed=False):
+    param = vtkAreaPreservingParam()
+    param.SetInputData(finger(length_over_radius, closed=closed))
+    errors = MessageRecorder(param)
+    warnings = MessageRecorder(param, vtkCommand.WarningEvent)
+    param.Update()
+    out = param.GetOutput()
+    fig = {}
+    if out.GetNumberOfPoints():
+        fig = {k: field_value(out, k) for k in (
+            "Converged", "RelativeError", "FlippedTriangles", "MeanAbsLogAreaRatio",
+            "ConformalMaximumAbsLogAreaRatio", "TransportStages", "Domain")}
+    print(f"{'closed, ' if closed else ''}L/rho {length_over_radius:4.1f}: {fig}", flush=True)
+    return fig, errors, warnings
