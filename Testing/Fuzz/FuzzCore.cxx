@@ -1005,6 +1005,10 @@ CaseResult fuzzPipeline(Rng& rng, bool sphere)
   {
     return "";
   }
+  if (const char* dump = std::getenv("OTPARAM_FUZZ_DUMP"))
+  {
+    std::ofstream(dump) << offText(soup);
+  }
   if (sphere)
   {
     const SphereParameterizationResult run = parameterizeSphere(soup, options);
