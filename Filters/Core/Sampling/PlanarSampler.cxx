@@ -1400,17 +1400,10 @@ void sampleConvex(
     },
     [&] { return finishCandidate(field, options, *source, refined, result.sourceMass); });
 }
-// SamplerOptions::sampleAtOrigin: the sample nearest the origin moved onto it, the masses
-// integrated again. False with the result's error set when the source cannot be built.
-bool moveNearestSampleToOrigin(const DensityField& field, SamplerResult& result)
+// The masses of the result's samples as they are (their Voronoi cells' integrals). False with
+// the result's error set when the source cannot be built.
+bool integrateMasses(const DensityField& field, SamplerResult& result)
 {
-  if (result.samples.empty())
-  {
-    return true;
-  }
-  const auto nearest = std::min_element(result.samples.begin(), result.samples.end(),
-    [](const Vec2& a, const Vec2& b) { return dot(a, a) < dot(b, b); });
-  *nearest = Vec2{ 0.0, 0.0 };
   std::string error;
   const auto source = field.makeSource(error);
   if (!source)
@@ -1422,6 +1415,20 @@ bool moveNearestSampleToOrigin(const DensityField& field, SamplerResult& result)
   result.mass = c.mass;
   result.massCoefficientOfVariation = c.coefficientOfVariation;
   return true;
+}
+
+// SamplerOptions::sampleAtOrigin: the sample nearest the origin moved onto it, the masses
+// integrated again. False with the result's error set when the source cannot be built.
+bool moveNearestSampleToOrigin(const DensityField& field, SamplerResult& result)
+{
+  if (result.samples.empty())
+  {
+    return true;
+  }
+  const auto nearest = std::min_element(result.samples.begin(), result.samples.end(),
+    [](const Vec2& a, const Vec2& b) { return dot(a, a) < dot(b, b); });
+  *nearest = Vec2{ 0.0, 0.0 };
+  return integrateMasses(field, result);
 }
 } // namespace
 
@@ -1493,16 +1500,10 @@ SamplerResult sampleDensity(const DensityField& field, const SamplerOptions& opt
   {
     result.secondsRefinement = secondsSince(t0);
     t0 = Clock::now();
-    std::string error;
-    const auto source = field.makeSource(error);
-    if (!source)
+    if (!integrateMasses(field, result))
     {
-      result.status.error = error;
       return result;
     }
-    const Candidate c = massesOf(*source, result.samples, result.sourceMass);
-    result.mass = c.mass;
-    result.massCoefficientOfVariation = c.coefficientOfVariation;
     result.secondsMasses = secondsSince(t0);
   }
   result.minimumAngleDegrees = smallestAngleDegrees(result.samples, result.triangles);
