@@ -703,9 +703,39 @@ void relaxWhereItPays(SamplerResult& result, bool adaptive,
 // is always convex), so the mesher's straight constrained edges, split at their midpoints, are
 // what is needed, and it already handles what the convex path does by hand: constrained edges
 // that keep triangles out of holes, encroachment, and small input angles (clusters).
-using MeshFb = CGAL::Delaunay_mesh_face_base_2<K>;
-using MeshTds = CGAL::Triangulation_data_structure_2<CGAL::Triangulation_vertex_base_2<K>, MeshFb>;
-using CDT = CGAL::Constrained_Delaunay_triangulation_2<K, MeshTds, CGAL::Exact_predicates_tag>;
+
+// Thrown, before the triangulation changes, where CGAL's mesher would loop forever or corrupt
+// the triangulation on a point double precision cannot place (MeshTraits, StarChecked below).
+struct UnplaceableRefinementPoint
+{
+};
+
+// K, but for the mesher's one translation. CGAL's cluster split (split_cluster_point in
+// Refine_edges_with_clusters.h) doubles a vector from an edge's end until it passes the edge's
+// midpoint. For an edge one unit in the last place long, the midpoint is that end, the vector
+// is zero, and the loop never ends, inside one refinement step where no cap is checked (a
+// peeled stage of two square tubes hung there: robustness.md, finding 11). A zero translation
+// is only ever that loop, so it throws, and the refinement stops as stalled.
+struct MeshTraits : K
+{
+  struct Construct_translated_point_2
+  {
+    Point operator()(const Point& p, const K::Vector_2& v) const
+    {
+      if (v.x() == 0.0 && v.y() == 0.0)
+      {
+        throw UnplaceableRefinementPoint{};
+      }
+      return K::Construct_translated_point_2()(p, v);
+    }
+  };
+  Construct_translated_point_2 construct_translated_point_2_object() const { return {}; }
+};
+using MeshFb = CGAL::Delaunay_mesh_face_base_2<MeshTraits>;
+using MeshTds =
+  CGAL::Triangulation_data_structure_2<CGAL::Triangulation_vertex_base_2<MeshTraits>, MeshFb>;
+using CDT =
+  CGAL::Constrained_Delaunay_triangulation_2<MeshTraits, MeshTds, CGAL::Exact_predicates_tag>;
 
 // The mesher's size criterion on edge lengths, replaced by the nu-length of the circumradius
 // against eps (the convex path's test), with the largest density over the triangle.
@@ -794,7 +824,85 @@ public:
 private:
   Grading Sizes;
 };
-using Mesher = CGAL::Delaunay_mesher_2<CDT, GradedCriteria>;
+
+// A mesher level whose insertions first check what CGAL's star_hole assumes: the new point lies
+// in the region it re-triangulates (a face of the conflict zone, or an edge between two). An
+// edge's midpoint computed in doubles can miss both of the edge's faces when one is thinner
+// than the rounding (boundaries at double precision's end, finding 11 of robustness.md): CGAL
+// then inserts it anyway, the faces around the new vertex no longer close up, and the mesher
+// circled around it forever. Only the edge level may land on a vertex; the face level's
+// circumcentre there is a no-op CGAL already handles.
+template <typename Level, bool EdgeLevel>
+class StarChecked : public Level
+{
+public:
+  using Level::Level;
+
+  template <typename Zone>
+  CDT::Vertex_handle insert_impl(const Point& p, Zone& zone)
+  {
+    const auto inZone = [&](const CDT::Face_handle& f)
+    { return std::find(zone.faces.begin(), zone.faces.end(), f) != zone.faces.end(); };
+    bool holds = false;
+    switch (zone.locate_type)
+    {
+      case CDT::FACE:
+      case CDT::OUTSIDE_CONVEX_HULL:
+        holds = inZone(zone.fh);
+        break;
+      case CDT::EDGE:
+        holds = inZone(zone.fh) && inZone(zone.fh->neighbor(zone.i));
+        break;
+      case CDT::VERTEX:
+        holds = !EdgeLevel;
+        break;
+      default:
+        break;
+    }
+    if (!holds)
+    {
+      throw UnplaceableRefinementPoint{};
+    }
+    return Level::insert_impl(p, zone);
+  }
+};
+
+// CGAL's Delaunay_mesher_2, composed of the same levels, checked (StarChecked). Its levels are
+// fixed inside Delaunay_mesher_2, hence this copy of its composition.
+class Mesher
+{
+  using Gabriel = CGAL::Mesh_2::Is_locally_conforming_Gabriel<CDT>;
+  using EdgesBase = StarChecked<CGAL::Mesh_2::Refine_edges_base_with_clusters<CDT, Gabriel>, true>;
+  using Edges = CGAL::Mesh_2::Refine_edges_with_clusters<CDT, Gabriel, EdgesBase>;
+  using FacesBase = StarChecked<CGAL::Mesh_2::Refine_faces_base<CDT, GradedCriteria, Edges>, false>;
+  using Faces = CGAL::Mesh_2::Refine_faces<CDT, GradedCriteria, Edges, FacesBase>;
+
+public:
+  // The domain's faces must be marked (markDomain) before.
+  Mesher(CDT& cdt, const GradedCriteria& criteria)
+    : Criteria(criteria)
+    , Clusters(cdt)
+    , EdgeLevel(cdt, Clusters, NullLevel)
+    , FaceLevel(cdt, Criteria, EdgeLevel)
+    , Visitor(FaceLevel, EdgeLevel, NullVisitor)
+  {
+    Clusters.create_clusters();
+    EdgeLevel.scan_triangulation();
+    FaceLevel.scan_triangulation();
+  }
+
+  // False when done. Throws UnplaceableRefinementPoint, the triangulation unchanged by the step.
+  bool try_one_step_refine_mesh() { return FaceLevel.one_step(Visitor); }
+
+private:
+  GradedCriteria Criteria;
+  CGAL::Null_mesher_level NullLevel;
+  CGAL::Null_mesh_visitor NullVisitor;
+  CGAL::Mesh_2::Clusters<CDT> Clusters;
+  Edges EdgeLevel;
+  Faces FaceLevel;
+  CGAL::Mesh_2::Refine_edges_visitor_from_faces<Faces> Visitor;
+};
 
 // Faces of the constrained triangulation inside the domain: those an odd number of constrained
 // edges away from the outside (the domain's boundary loops are the constraints). The mesher's
@@ -857,7 +965,8 @@ constexpr long long StalledMesherSteps = 4096;
 
 // Refines cdt (its boundary already constrained, plus any interior points) until no triangle of
 // the domain is too large or too thin, or `cap` vertices (capped), or StalledMesherSteps steps
-// without a new vertex (stalled, capped too). Returns false when aborted.
+// without a new vertex or an edge too short to split (stalled, capped too). Returns false when
+// aborted.
 bool refineSupport(CDT& cdt, const DensityField& field, const SamplerOptions& options,
   double epsilon, long long cap, bool& capped, bool& stalled,
   const std::function<bool(long long)>& keepGoing)
@@ -866,11 +975,23 @@ bool refineSupport(CDT& cdt, const DensityField& field, const SamplerOptions& op
   GradedCriteria::Grading grading{ &field, options.mode == SamplingMode::Adaptive, options.sizeRule,
     epsilon };
   Mesher mesher(cdt, GradedCriteria(std::sin(options.minimumAngleDegrees * Pi / 180.0), grading));
-  mesher.init(true);
   long long steps = 0, stepOfLastVertex = 0;
   auto vertices = cdt.number_of_vertices();
-  while (mesher.try_one_step_refine_mesh())
+  while (true)
   {
+    try
+    {
+      if (!mesher.try_one_step_refine_mesh())
+      {
+        break;
+      }
+    }
+    catch (const UnplaceableRefinementPoint&)
+    {
+      // Thrown before the step changed the triangulation: it stays valid, refined this far.
+      capped = stalled = true;
+      break;
+    }
     if (static_cast<long long>(cdt.number_of_vertices()) >= cap)
     {
       capped = true;
