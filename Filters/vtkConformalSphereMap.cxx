@@ -100,6 +100,7 @@ int vtkConformalSphereMap::Execute(
   AddScalar(output, "FillAreaFraction", stage.fillAreaFraction);
   AddIntScalar(output, "FlippedWithMeshLaplacian", map.flippedWithMeshLaplacian);
   AddIntScalar(output, "IntrinsicLaplacian", map.intrinsicLaplacian ? 1 : 0);
+  AddIntScalar(output, "FlooredWeights", map.flooredWeights ? 1 : 0);
   AddScalar(output, "SecondsFactorization", map.secondsFactorization);
   AddScalar(output, "SecondsSolve", map.secondsSolve);
   AddScalar(output, "SecondsBalance", map.secondsBalance);

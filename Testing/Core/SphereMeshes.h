@@ -126,6 +126,64 @@ SurfaceMesh revolutionSurface(Radius radius, int rings, int sectors)
   return mesh;
 }
 
+// A square pyramid: an n x n grid of unit squares (each cut by a diagonal, alternating) as its
+// base and one apex `height` above the base's centre, joined to every base boundary point by
+// a fan of thin triangles. Its base corners are sharp (three triangles each, the cotangent
+// weight toward the apex negative), as on meshes of boxes and on VTK's coarse sources.
+inline SurfaceMesh pyramidMesh(int n, double height)
+{
+  SurfaceMesh mesh;
+  auto id = [n](int i, int j) { return i * (n + 1) + j; };
+  for (int i = 0; i <= n; ++i)
+  {
+    for (int j = 0; j <= n; ++j)
+    {
+      mesh.points.push_back({ static_cast<double>(i), static_cast<double>(j), 0.0 });
+    }
+  }
+  for (int i = 0; i < n; ++i)
+  {
+    for (int j = 0; j < n; ++j)
+    {
+      const int a = id(i, j), b = id(i + 1, j), c = id(i + 1, j + 1), d = id(i, j + 1);
+      if ((i + j) % 2)
+      {
+        mesh.triangles.push_back({ a, c, b });
+        mesh.triangles.push_back({ a, d, c });
+      }
+      else
+      {
+        mesh.triangles.push_back({ a, d, b });
+        mesh.triangles.push_back({ b, d, c });
+      }
+    }
+  }
+  std::vector<int> rim; // counter-clockwise seen from above
+  for (int i = 0; i < n; ++i)
+  {
+    rim.push_back(id(i, 0));
+  }
+  for (int j = 0; j < n; ++j)
+  {
+    rim.push_back(id(n, j));
+  }
+  for (int i = n; i > 0; --i)
+  {
+    rim.push_back(id(i, n));
+  }
+  for (int j = n; j > 0; --j)
+  {
+    rim.push_back(id(0, j));
+  }
+  const int apex = static_cast<int>(mesh.points.size());
+  mesh.points.push_back({ 0.5 * n, 0.5 * n, height });
+  for (size_t k = 0; k < rim.size(); ++k)
+  {
+    mesh.triangles.push_back({ rim[k], rim[(k + 1) % rim.size()], apex });
+  }
+  return mesh;
+}
+
 } // namespace testing
 } // namespace otparam
 

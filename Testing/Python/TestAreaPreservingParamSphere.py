@@ -5,7 +5,9 @@ field data that the reference scorer (param_metrics.py --sphere) reproduces to 1
 texture coordinates are longitude / latitude in [0, 1]. The spot with three small holes goes to
 the sphere too (filled, then the fill dropped). Bad domains: an open surface with Domain Sphere
 (a hole of half the surface), a closed one with Domain Disk, a torus (genus named), two spheres (components
-named), Domain 7; each one error, empty outputs, the input untouched."""
+named), Domain 7; each one error, empty outputs, the input untouched. Coarse sharp corners: a tall
+pyramid over a grid maps; VTK's capped cone at resolution 24 (a fan of thin triangles at its
+tip and base) is refused with a message saying to refine it, and maps once subdivided twice."""
 
 import math
 
@@ -17,6 +19,9 @@ from otparam_test_utils import (MessageRecorder, check, check_failed_run, field_
 from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.vtkCommonCore import vtkCommand
 from vtkmodules.vtkCommonExecutionModel import vtkAlgorithm
+from vtkmodules.vtkFiltersCore import vtkCleanPolyData, vtkTriangleFilter
+from vtkmodules.vtkFiltersModeling import vtkLinearSubdivisionFilter
+from vtkmodules.vtkFiltersSources import vtkConeSource
 
 scorer = param_metrics()
 
@@ -138,6 +143,49 @@ f.Update()
 check(field_value(f.GetOutput(), "Domain") == 1 and "boundary loop is small" in warnings.text()
       and "domain sphere" in warnings.text().lower(),
       f"spot with a hole, Domain Disk: a warning names the small boundary ({warnings.text()})")
+
+def pyramid(n, height):
+    """An n x n grid of unit squares and an apex `height` above its centre joined to its rim by
+    thin triangles: its base corners are points of three triangles, one cotangent weight
+    negative (Testing/Core/SphereMeshes.h, pyramidMesh)."""
+    index = lambda i, j: i * (n + 1) + j
+    points = [(float(i), float(j), 0.0) for i in range(n + 1) for j in range(n + 1)]
+    triangles = []
+    for i in range(n):
+        for j in range(n):
+            a, b, c, d = index(i, j), index(i + 1, j), index(i + 1, j + 1), index(i, j + 1)
+            triangles += [(a, c, b), (a, d, c)] if (i + j) % 2 else [(a, d, b), (b, d, c)]
+    rim = ([index(i, 0) for i in range(n)] + [index(n, j) for j in range(n)]
+           + [index(i, n) for i in range(n, 0, -1)] + [index(0, j) for j in range(n, 0, -1)])
+    points.append((n / 2, n / 2, height))
+    triangles += [(rim[k], rim[(k + 1) % len(rim)], len(points) - 1) for k in range(len(rim))]
+    return make_domain(points, triangles)
+
+
+# The first most regular triangle, the conformal map's puncture before, was at a base corner:
+# 45 triangles folded, and the sampler refused the map with a message about its own triangles.
+check_sphere_map("pyramid over a 24 x 24 grid, apex 72 above", pyramid(24, 72.0), 0.005)
+
+
+def cone(subdivisions):
+    source = vtkConeSource()
+    source.SetResolution(24)
+    triangles = vtkTriangleFilter()
+    triangles.SetInputConnection(source.GetOutputPort())
+    clean = vtkCleanPolyData()
+    clean.SetInputConnection(triangles.GetOutputPort())
+    last = clean
+    if subdivisions:
+        last = vtkLinearSubdivisionFilter()
+        last.SetNumberOfSubdivisions(subdivisions)
+        last.SetInputConnection(clean.GetOutputPort())
+    last.Update()
+    return last.GetOutput()
+
+
+check_refused("VTK's cone, resolution 24", cone(0),
+              ["conformal sphere map folds", "too coarse", "sharp feature", "subdivision"])
+check_sphere_map("VTK's cone, resolution 24, subdivided twice", cone(2), 0.08)
 
 points, triangles = ring_disk(8, lambda t, a: (t * math.cos(a), t * math.sin(a), 0.0))
 check_refused("open surface, Domain Sphere", make_domain(points, triangles),

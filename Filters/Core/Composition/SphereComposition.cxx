@@ -337,6 +337,13 @@ bool correctOnSphere(const SurfaceMesh& surface, const composition::VertexStars&
 }
 } // namespace
 
+//------------------------------------------------------------------------------
+std::int64_t untangleSphereMap(const SurfaceMesh& surface, std::vector<Vec3>& sphere)
+{
+  const composition::VertexStars stars(sphere.size(), surface.triangles);
+  return untangleOnSphere(surface, stars, sphere);
+}
+
 SphereCompositionResult composeOnSphere(const SurfaceMesh& surface,
   const std::vector<Vec3>& conformal, const std::vector<Vec3>& samples,
   const std::vector<Triangle>& sampleTriangles, const std::vector<Vec3>& sampleImages,

@@ -51,6 +51,11 @@ SphereCompositionResult composeOnSphere(const SurfaceMesh& surface,
   const std::vector<Triangle>& sampleTriangles, const std::vector<Vec3>& sampleImages,
   const CompositionOptions& options = {});
 
+// Step 2 alone on any sphere map (triangles counter-clockwise from outside where unflipped):
+// the flipped triangles' vertices moved, then patches re-embedded, until none is flipped or no
+// move helps. Returns the vertices moved.
+std::int64_t untangleSphereMap(const SurfaceMesh& surface, std::vector<Vec3>& sphere);
+
 // Area-weighted mean |log(spherical area fraction / surface area fraction)|, as
 // param_metrics.py --sphere scores it; over the first `measured` triangles (0 = all), their
 // surface fractions renormalized over them.

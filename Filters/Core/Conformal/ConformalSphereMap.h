@@ -47,6 +47,10 @@ struct ConformalSphereMapResult
   // with the intrinsic Delaunay Laplacian, kept if it flips fewer (intrinsicLaplacian = true).
   std::int64_t flippedWithMeshLaplacian = 0;
   bool intrinsicLaplacian = false;
+  // Both cotangent Laplacians flipped triangles, and the mesh's with every weight floored at a
+  // small positive value flipped fewer: that map was kept (no longer exactly conformal at the
+  // floored edges: a coarse sharp corner's).
+  bool flooredWeights = false;
   int intrinsicFlips = 0;
   int balanceIterations = 0;    // Newton steps of the final Moebius balancing
   double balanceResidual = 0.0; // |centre of mass| / total mass after balancing

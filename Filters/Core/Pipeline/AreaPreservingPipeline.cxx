@@ -910,6 +910,19 @@ void composeOnTheSphere(const AreaPreservingOptions& options, SphereParameteriza
 }
 } // namespace
 
+// A conformal sphere map can fold where the surface is not crowded: at a coarse sharp corner
+// (the base corners of a pyramid, a vertex of three triangles whose cotangent weights are
+// negative, and whose intrinsic Delaunay triangulation leaves it two neighbours). The sampler
+// takes only positive triangles: the start is untangled as the composition untangles its map,
+// which moves those corners' vertices only. (A crowded start is healed by its stages instead.)
+void untangleConformalStart(SphereParameterizationResult& run)
+{
+  const SurfaceMesh& mesh = run.conformal.surface.mesh;
+  run.startUntangledVertices = untangleSphereMap(mesh, run.startSphere);
+  std::vector<double> perPoint;
+  computeSphereAreaDensity(mesh, run.startSphere, run.startDensity, perPoint);
+}
+
 //------------------------------------------------------------------------------
 SphereParameterizationResult parameterizeSphere(
   const TriangleSoup& surface, const AreaPreservingOptions& requested)
@@ -945,12 +958,30 @@ SphereParameterizationResult parameterizeSphere(
       {
         return;
       }
+      const bool folded = run.transportStages == 0 && SphereStaging::folded(run);
+      if (folded)
+      {
+        untangleConformalStart(run);
+      }
+      // Healed where the untangling left folds, as a stage samples.
       sample(options, run, run.startDensity,
         [&](const SamplerOptions& samplerOptions)
+        { return SphereStaging::sample(run, run.startDensity, samplerOptions); });
+      if (folded && !run.sampling.status.ok() && !run.sampling.status.aborted)
+      {
+        std::int64_t stillFolded = 0;
+        for (const Triangle& t : run.conformal.surface.mesh.triangles)
         {
-          return runSphereSamplingStage(run.startSphere, run.conformal.surface.mesh.triangles,
-            run.startDensity, samplerOptions);
-        });
+          stillFolded += positive(run.startSphere, t) ? 0 : 1;
+        }
+        std::ostringstream msg;
+        msg << "the conformal sphere map folds " << run.conformal.map.flippedTriangles
+            << " triangle(s), " << stillFolded
+            << " after untangling, which the sampler cannot take. The mesh is too coarse around "
+               "a sharp feature (a corner of three triangles, a cone's tip, a fan of thin "
+               "triangles): refine it, e.g. with a linear or Loop subdivision";
+        run.sampling.status.error = msg.str();
+      }
     },
     [&](const OTOptions& transportOptions)
     {

@@ -107,6 +107,7 @@ struct SphereParameterizationResult
   std::vector<Vec3> startSphere;
   std::vector<double> startDensity;
   int transportStages = 0;
+  std::int64_t startUntangledVertices = 0; // a folded conformal start, not crowded, untangled
   SphereTransportStage transport;
   std::vector<Vec3> sampleImages; // T^-1 of each Dirac: its cell's centroid on the sphere
   SphereCompositionResult composition;

@@ -274,6 +274,29 @@ TEST(ConformalSphereMap, IntrinsicLaplacianOnRequest)
   EXPECT_LE(norm(pushedAreaCentre(mesh, c.map.sphere)), 1e-6);
 }
 
+// Coarse sharp corners: a pyramid over a 24 x 24 grid with its apex 72 above. Punctured at the
+// first most regular triangle, a base corner, the map folded 45 triangles with the mesh's
+// cotangent Laplacian, and the intrinsic Delaunay one (which leaves each base corner two
+// neighbours) did no better. Punctured inside, 1 fold with the mesh's Laplacian; with every
+// weight floored at a small positive value, none.
+TEST(ConformalSphereMap, PyramidIsMappedWithoutFoldsAtItsCorners)
+{
+  const SurfaceMesh mesh = pyramidMesh(24, 72.0);
+  const SphereCase c = mapSurface(mesh);
+  ASSERT_TRUE(c.map.status.ok()) << c.map.status.error;
+  const Triangle& puncture = mesh.triangles[c.map.punctureTriangle];
+  for (int v : puncture)
+  {
+    EXPECT_LT(v, 25 * 25) << "the puncture touches the apex";
+    const int i = v / 25, j = v % 25;
+    EXPECT_FALSE((i == 0 || i == 24) && (j == 0 || j == 24)) << "the puncture is at a corner";
+  }
+  EXPECT_GT(c.map.flippedWithMeshLaplacian, 0);
+  EXPECT_TRUE(c.map.flooredWeights);
+  EXPECT_EQ(c.map.flippedTriangles, 0);
+  EXPECT_LE(norm(pushedAreaCentre(mesh, c.map.sphere)), 1e-6);
+}
+
 // Triangles facing inward: the map is the mirror image, still counter-clockwise seen from
 // outside, with the same angles.
 TEST(ConformalSphereMap, InwardTrianglesAreMirrored)
