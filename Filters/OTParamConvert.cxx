@@ -25,24 +25,39 @@ namespace otparam_vtk
 {
 
 //------------------------------------------------------------------------------
-std::string ReadTriangleSoup(vtkPolyData* input, const char* what, otparam::TriangleSoup& soup)
+std::string ReadTriangleSoup(
+  vtkPolyData* input, const char* what, otparam::TriangleSoup& soup, std::string& ignored)
 {
   std::ostringstream msg;
+  ignored.clear();
   const vtkIdType numberOfPoints = (input && input->GetPoints()) ? input->GetNumberOfPoints() : 0;
-  // Any cell counts here: vertices, lines and strips get the "triangles only" message below.
   if (!input || numberOfPoints == 0 || input->GetNumberOfCells() == 0)
   {
     msg << "The " << what << " is empty: it needs points and triangles.";
     return msg.str();
   }
-  if (input->GetNumberOfVerts() > 0 || input->GetNumberOfLines() > 0 ||
-    input->GetNumberOfStrips() > 0)
+  if (input->GetNumberOfPolys() == 0)
+  {
+    msg << "The " << what
+        << " must be made of triangles only, but it has no triangles: " << input->GetNumberOfVerts()
+        << " vertex cells, " << input->GetNumberOfLines() << " line cells and "
+        << input->GetNumberOfStrips() << " triangle strips (apply vtkTriangleFilter to strips).";
+    return msg.str();
+  }
+  if (input->GetNumberOfStrips() > 0)
   {
     msg << "The " << what << " must be made of triangles only, but it has "
-        << input->GetNumberOfVerts() << " vertex cells, " << input->GetNumberOfLines()
-        << " line cells and " << input->GetNumberOfStrips()
-        << " triangle strips (extract the surface and apply vtkTriangleFilter first).";
+        << input->GetNumberOfStrips() << " triangle strips (apply vtkTriangleFilter first).";
     return msg.str();
+  }
+  if (input->GetNumberOfVerts() > 0 || input->GetNumberOfLines() > 0)
+  {
+    std::ostringstream text;
+    text << "The " << what << "'s " << input->GetNumberOfVerts() << " vertex cell(s) and "
+         << input->GetNumberOfLines()
+         << " line cell(s) are ignored: only its triangles are mapped (vtkCleanPolyData leaves "
+            "the triangles it collapses as such cells).";
+    ignored = text.str();
   }
   soup.points.resize(static_cast<std::size_t>(numberOfPoints));
   for (vtkIdType i = 0; i < numberOfPoints; ++i)
@@ -71,6 +86,17 @@ std::string ReadTriangleSoup(vtkPolyData* input, const char* what, otparam::Tria
     msg << "The " << what << " must be made of triangles, but polygon id(s) "
         << otparam::idList(notTriangles) << " are not (apply vtkTriangleFilter first).";
   }
+  return msg.str();
+}
+
+//------------------------------------------------------------------------------
+std::string TrianglesOnlyError(vtkPolyData* input, const char* what)
+{
+  std::ostringstream msg;
+  msg << "The " << what << " must be made of triangles only, but it has "
+      << input->GetNumberOfVerts() << " vertex cells, " << input->GetNumberOfLines()
+      << " line cells and " << input->GetNumberOfStrips()
+      << " triangle strips (extract the surface and apply vtkTriangleFilter first).";
   return msg.str();
 }
 
@@ -302,6 +328,38 @@ vtkSmartPointer<vtkIdTypeArray> MakeOriginalPointIds(const std::vector<std::int6
 }
 
 //------------------------------------------------------------------------------
+void CopyTriangleCellData(vtkPolyData* input, vtkCellData* cells)
+{
+  // vtkPolyData numbers its cells vertices, lines, polygons, strips: the triangles' arrays
+  // start after the vertex and line cells ReadTriangleSoup left out.
+  const vtkIdType first = input->GetNumberOfVerts() + input->GetNumberOfLines();
+  if (first == 0)
+  {
+    cells->ShallowCopy(input->GetCellData());
+    return;
+  }
+  const vtkIdType count = input->GetNumberOfPolys();
+  cells->Initialize();
+  cells->CopyAllocate(input->GetCellData(), count);
+  for (vtkIdType c = 0; c < count; ++c)
+  {
+    cells->CopyData(input->GetCellData(), first + c, c);
+  }
+}
+
+//------------------------------------------------------------------------------
+void CopyTrianglesOf(vtkPolyData* input, vtkPolyData* output)
+{
+  output->ShallowCopy(input);
+  if (input->GetNumberOfVerts() + input->GetNumberOfLines() > 0)
+  {
+    output->SetVerts(vtkNew<vtkCellArray>());
+    output->SetLines(vtkNew<vtkCellArray>());
+    CopyTriangleCellData(input, output->GetCellData());
+  }
+}
+
+//------------------------------------------------------------------------------
 void CopyInputArrays(
   vtkPolyData* input, const std::vector<std::int64_t>& originalPointIds, vtkPolyData* output)
 {
@@ -314,7 +372,7 @@ void CopyInputArrays(
     points->CopyData(input->GetPointData(), originalPointIds[v], v);
   }
   vtkCellData* cells = output->GetCellData();
-  cells->ShallowCopy(input->GetCellData());
+  CopyTriangleCellData(input, cells);
   if (vtkDataArray* normals = cells->GetNormals())
   {
     cells->RemoveArray(normals->GetName());

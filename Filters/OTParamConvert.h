@@ -29,9 +29,17 @@ namespace otparam_vtk
 {
 
 // ---- Reading.
-// A surface made of triangles only: `what` names it in messages ("input surface", "input
-// domain"). Point ids are not checked here (compactMesh does, naming the triangles).
-std::string ReadTriangleSoup(vtkPolyData* input, const char* what, otparam::TriangleSoup& soup);
+// A surface's triangles: `what` names it in messages ("input surface", "input domain"). Vertex
+// and line cells are left out, as VTK's surface filters leave them (vtkCleanPolyData turns
+// triangles it collapses into such cells): `ignored` then says so, for a warning. Strips and
+// other polygons are errors. Point ids are not checked here (compactMesh does, naming the
+// triangles).
+std::string ReadTriangleSoup(
+  vtkPolyData* input, const char* what, otparam::TriangleSoup& soup, std::string& ignored);
+
+// For inputs that are domains, not surfaces (the sampler's, the transport's source): their
+// cell arrays are per triangle, so vertex and line cells are an error, which this names.
+std::string TrianglesOnlyError(vtkPolyData* input, const char* what);
 
 // The points `ids` of a surface, which must lie in the plane z = 0 (up to 1e-12 of the
 // domain's size) and be finite; messages name the input's point ids.
@@ -62,6 +70,12 @@ void AddScalar(vtkDataObject* data, const char* name, double value);
 void AddIntScalar(vtkDataObject* data, const char* name, long long value);
 void AddIdScalar(vtkDataObject* data, const char* name, long long value);
 void AddString(vtkDataObject* data, const char* name, const std::string& value);
+
+// The input's cell arrays for its triangles only (those ReadTriangleSoup reads).
+void CopyTriangleCellData(vtkPolyData* input, vtkCellData* cells);
+
+// The input, less the vertex and line cells ReadTriangleSoup leaves out (shallow).
+void CopyTrianglesOf(vtkPolyData* input, vtkPolyData* output);
 
 // vtkOriginalPointIds: the input point id of each output point.
 vtkSmartPointer<vtkIdTypeArray> MakeOriginalPointIds(const std::vector<std::int64_t>& ids);

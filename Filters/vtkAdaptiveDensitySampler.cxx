@@ -249,7 +249,12 @@ struct vtkAdaptiveDensitySampler::Input
 std::string vtkAdaptiveDensitySampler::ReadInput(vtkPolyData* input, Input& read)
 {
   otparam::TriangleSoup soup;
-  std::string error = ReadTriangleSoup(input, "input domain", soup);
+  std::string ignored;
+  std::string error = ReadTriangleSoup(input, "input domain", soup, ignored);
+  if (error.empty() && !ignored.empty())
+  {
+    error = TrianglesOnlyError(input, "input domain");
+  }
   if (error.empty())
   {
     error = otparam::compactMesh(soup.points, soup.triangles, read.domain);

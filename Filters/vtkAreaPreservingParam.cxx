@@ -105,7 +105,7 @@ void WriteDomainMesh(
 // per-triangle figures (the input's triangles are the conformal image's, in the same order).
 void WriteSurface(const otparam::AreaPreservingResult& run, vtkPolyData* input, vtkPolyData* output)
 {
-  output->ShallowCopy(input);
+  CopyTrianglesOf(input, output);
   const auto nan = otparam::Vec2{ std::numeric_limits<double>::quiet_NaN(),
     std::numeric_limits<double>::quiet_NaN() };
   std::vector<otparam::Vec2> areaPreserving(input->GetNumberOfPoints(), nan);
@@ -203,7 +203,7 @@ void WriteDomainMesh(
 void WriteSurface(
   const otparam::SphereParameterizationResult& run, vtkPolyData* input, vtkPolyData* output)
 {
-  output->ShallowCopy(input);
+  CopyTrianglesOf(input, output);
   const double nan = std::numeric_limits<double>::quiet_NaN();
   std::vector<otparam::Vec3> areaPreserving(input->GetNumberOfPoints(), { nan, nan, nan });
   std::vector<otparam::Vec3> conformal(areaPreserving);
@@ -306,15 +306,20 @@ int vtkAreaPreservingParam::Execute(
     error = msg.str();
   }
   otparam::TriangleSoup soup;
+  std::string ignored;
   if (error.empty())
   {
-    error = ReadTriangleSoup(input, "input surface", soup);
+    error = ReadTriangleSoup(input, "input surface", soup, ignored);
     error = error.empty() ? error : "conformal map: " + error;
   }
   if (!error.empty())
   {
     vtkErrorMacro(<< error);
     return 0;
+  }
+  if (!ignored.empty())
+  {
+    vtkWarningMacro(<< ignored);
   }
 
   const bool sphere = this->Domain == SPHERE ||

@@ -56,14 +56,19 @@ int vtkConformalDiskMap::Execute(
   // Parameters first: a bad one is reported whatever the input.
   std::string error = options.check();
   otparam::TriangleSoup soup;
+  std::string ignored;
   if (error.empty())
   {
-    error = ReadTriangleSoup(input, "input surface", soup);
+    error = ReadTriangleSoup(input, "input surface", soup, ignored);
   }
   if (!error.empty())
   {
     vtkErrorMacro(<< error);
     return 0;
+  }
+  if (!ignored.empty())
+  {
+    vtkWarningMacro(<< ignored);
   }
   otparam::ConformalStage stage = otparam::runConformalStage(soup, options);
   otparam::warnAboutUnreferencedPoints(stage.surface.unreferencedPoints, false, stage.status);

@@ -55,11 +55,16 @@ int vtkConformalSphereMap::Execute(
   options.maximumBalanceIterations = this->MaximumBalanceIterations;
   options.progress = this->ProgressCallback();
   otparam::TriangleSoup soup;
-  const std::string error = ReadTriangleSoup(input, "input surface", soup);
+  std::string ignored;
+  const std::string error = ReadTriangleSoup(input, "input surface", soup, ignored);
   if (!error.empty())
   {
     vtkErrorMacro(<< error);
     return 0;
+  }
+  if (!ignored.empty())
+  {
+    vtkWarningMacro(<< ignored);
   }
   otparam::SphereConformalStage stage =
     otparam::runSphereConformalStage(soup, options, this->FillHoles);

@@ -5,10 +5,12 @@ again once the input is fixed. Abort leaves the outputs empty."""
 
 import math
 
-from bad_disk_inputs import (INF, NAN, SURFACE_CASES, collapsed_edge, good_disk, reversed_triangle,
+from bad_disk_inputs import (INF, NAN, SURFACE_CASES, collapsed_edge, good_disk,
+                             nearly_collapsed_edge, reversed_triangle,
                              with_unreferenced_point)
 from otparam import vtkAreaPreservingParam
 from otparam_test_utils import (MessageRecorder, cell_lists, check, check_abort, check_failed_run,
+                                check_ignored_cells,
                                 field_value, finish, same, snapshot)
 from vtkmodules.vtkCommonCore import vtkCommand
 from vtkmodules.vtkFiltersCore import vtkCleanPolyData
@@ -87,21 +89,28 @@ check(out.GetNumberOfPoints() == surface.GetNumberOfPoints()
       and field_value(out, "FlippedTriangles") == 0 and field_value(out, "Converged") == 1,
       "fixed input: converged, every point, no flipped triangle")
 
-# Coincident points: the clean the message names makes the surface mappable (one point fewer,
-# the two collapsed triangles gone).
-clean = vtkCleanPolyData()
-clean.SetInputData(collapsed_edge())
-clean.ConvertPolysToLinesOff()
-param = vtkAreaPreservingParam()
-param.SetNumberOfSamples(200)
-param.SetInputConnection(clean.GetOutputPort())
-errors = MessageRecorder(param)
-param.Update()
-out = param.GetOutput()
-check(not errors.messages and out.GetNumberOfPoints() == good_disk().GetNumberOfPoints() - 1
-      and out.GetNumberOfPolys() == good_disk().GetNumberOfPolys() - 2
-      and field_value(out, "FlippedTriangles") == 0 and field_value(out, "Converged") == 1,
-      f"coincident points after vtkCleanPolyData: mapped ({errors.text()})")
+def map_after_clean(name, surface, tolerance, convert_polys_to_lines):
+    """The clean a message names, then the map: one point fewer, the two collapsed triangles
+    gone (as line cells, ignored, or dropped), converged with no flip."""
+    clean = vtkCleanPolyData()
+    clean.SetInputData(surface)
+    clean.SetTolerance(tolerance)
+    clean.SetConvertPolysToLines(convert_polys_to_lines)
+    param = vtkAreaPreservingParam()
+    param.SetNumberOfSamples(200)
+    param.SetInputConnection(clean.GetOutputPort())
+    errors = MessageRecorder(param)
+    param.Update()
+    out = param.GetOutput()
+    check(not errors.messages and out.GetNumberOfPoints() == good_disk().GetNumberOfPoints() - 1
+          and out.GetNumberOfPolys() == good_disk().GetNumberOfPolys() - 2
+          and field_value(out, "FlippedTriangles") == 0 and field_value(out, "Converged") == 1,
+          f"{name} after vtkCleanPolyData: mapped ({errors.text()})")
+
+
+map_after_clean("coincident points", collapsed_edge(), 0.0, False)
+# With the clean's default ConvertPolysToLines: the collapsed triangles become line cells.
+map_after_clean("nearly coincident points, Tolerance 1e-6", nearly_collapsed_edge(), 1e-6, True)
 
 # A point used by no triangle: the output keeps every input point, that one with NaN
 # coordinates, and the one warning says so (not the conformal stage's "left out").
@@ -129,4 +138,6 @@ param.SetInputData(good_disk())
 check_abort(param, after=0.3)
 check(outputs_empty(param), "abort: all three outputs are empty")
 
+check_ignored_cells("disk map, with a line and a vertex cell", vtkAreaPreservingParam(),
+                    good_disk())
 finish()

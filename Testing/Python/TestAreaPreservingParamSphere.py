@@ -21,7 +21,7 @@ from vtkmodules.vtkCommonCore import vtkCommand
 from vtkmodules.vtkCommonExecutionModel import vtkAlgorithm
 from vtkmodules.vtkFiltersCore import vtkCleanPolyData, vtkTriangleFilter
 from vtkmodules.vtkFiltersModeling import vtkLinearSubdivisionFilter
-from vtkmodules.vtkFiltersSources import vtkConeSource
+from vtkmodules.vtkFiltersSources import vtkConeSource, vtkSuperquadricSource
 
 scorer = param_metrics()
 
@@ -186,6 +186,32 @@ def cone(subdivisions):
 check_refused("VTK's cone, resolution 24", cone(0),
               ["conformal sphere map folds", "too coarse", "sharp feature", "subdivision"])
 check_sphere_map("VTK's cone, resolution 24, subdivided twice", cone(2), 0.08)
+
+# VTK's superquadric triangulated and cleaned as a user would: the clean leaves the triangles it
+# collapses at the poles as 64 line cells, which the filter leaves out with a warning.
+superquadric = vtkSuperquadricSource()
+superquadric.SetThetaResolution(32)
+superquadric.SetPhiResolution(32)
+superquadric.SetPhiRoundness(0.2)
+superquadric.SetThetaRoundness(0.2)
+triangulated = vtkTriangleFilter()
+triangulated.SetInputConnection(superquadric.GetOutputPort())
+cleaned = vtkCleanPolyData()
+cleaned.SetInputConnection(triangulated.GetOutputPort())
+cleaned.Update()
+f = vtkAreaPreservingParam()
+f.SetInputData(cleaned.GetOutput())
+errors = MessageRecorder(f)
+warnings = MessageRecorder(f, vtkCommand.WarningEvent)
+f.Update()
+out = f.GetOutput()
+check(not errors.messages and len(warnings.messages) == 1
+      and "64 line cell(s) are ignored" in warnings.text()
+      and out.GetNumberOfLines() == 0 and out.GetNumberOfPolys() == cleaned.GetOutput().GetNumberOfPolys()
+      and field_value(out, "Domain") == 2 and field_value(out, "FlippedTriangles") == 0
+      and field_value(out, "MeanAbsLogAreaRatio") <= 0.03,
+      f"VTK's superquadric, triangulated and cleaned: mapped on the sphere, the line cells left out "
+      f"with a warning ({errors.text()}{warnings.text()})")
 
 points, triangles = ring_disk(8, lambda t, a: (t * math.cos(a), t * math.sin(a), 0.0))
 check_refused("open surface, Domain Sphere", make_domain(points, triangles),

@@ -5,7 +5,8 @@ working again once the input is fixed. Also: points used by no triangle are not 
 from bad_disk_inputs import (CENTRE, INF, N, NAN, SURFACE_CASES, good_disk, reversed_triangle,
                              with_unreferenced_point)
 from otparam import vtkConformalDiskMap
-from otparam_test_utils import (MessageRecorder, cell_lists, check, check_failed_run, field_value,
+from otparam_test_utils import (MessageRecorder, cell_lists, check, check_failed_run,
+                                check_ignored_cells, field_value,
                                 finish, same, snapshot, update_recorded)
 from vtkmodules.vtkCommonCore import vtkCommand
 
@@ -108,4 +109,6 @@ check(not errors.messages, f"fixed input: no error ({errors.text()})")
 check(out.GetNumberOfPoints() == N * N and field_value(out, "FlippedTriangles") == 0,
       "fixed input: maps without flipped triangles")
 
+check_ignored_cells("conformal disk map, with a line and a vertex cell", vtkConformalDiskMap(),
+                    good_disk())
 finish()

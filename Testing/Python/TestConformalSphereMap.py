@@ -12,6 +12,7 @@ import numpy as np
 from bad_disk_inputs import add_cells, good_disk
 from otparam import vtkConformalSphereMap
 from otparam_test_utils import (MessageRecorder, check, check_abort, check_failed_run,
+                                check_ignored_cells,
                                 field_value, finish, make_domain, param_metrics, read_mesh,
                                 same, shared_mesh, snapshot, update_recorded)
 from vtkmodules.util.numpy_support import vtk_to_numpy
@@ -194,7 +195,6 @@ CASES = [
      [("non-manifold", "same direction"), "(0, 2)", "triangles 0 and 8"]),
     ("NaN point", make_domain(nan_points, T), {}, ["nan", "point ids 3"]),
     ("a quad", make_domain(P, T[:7] + [(0, 3, 5, 1)]), {}, ["triangle", "polygon id(s) 7"]),
-    ("line cell", add_cells(make_domain(P, T), "Lines", [(0, 1)]), {}, ["triangle", "line"]),
     ("PunctureTriangleId too large", make_domain(P, T), {"PunctureTriangleId": 8},
      ["puncture triangle 8"]),
     ("BalanceTolerance zero", make_domain(P, T), {"BalanceTolerance": 0.0},
@@ -241,4 +241,6 @@ check(len(X) == 6 and field_value(out, "FlippedTriangles") == 0
       and np.abs(np.linalg.norm(X, axis=1) - 1).max() <= 1e-12,
       "octahedron: maps onto the sphere without flipped triangles")
 
+check_ignored_cells("sphere map, with a line and a vertex cell", vtkConformalSphereMap(),
+                    make_domain(P, T))
 finish()

@@ -6,7 +6,7 @@ import sys
 
 from vtkmodules.util.misc import calldata_type
 from vtkmodules.util.vtkConstants import VTK_STRING
-from vtkmodules.vtkCommonCore import vtkCommand, vtkDoubleArray, vtkIdList, vtkPoints
+from vtkmodules.vtkCommonCore import vtkCommand, vtkDoubleArray, vtkIdList, vtkIntArray, vtkPoints
 from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData
 
 FAILURES = []
@@ -153,6 +153,32 @@ def update_recorded(algorithm, data):
     warnings = MessageRecorder(algorithm, vtkCommand.WarningEvent)
     algorithm.Update()
     return errors, warnings
+
+
+def check_ignored_cells(name, algorithm, surface):
+    """`surface` (triangles only) with a line and a vertex cell added, as vtkCleanPolyData
+    leaves collapsed triangles: `algorithm` maps the triangles with one warning naming the
+    ignored cells, and output 0's cell arrays follow the triangles (vtkPolyData numbers its
+    vertex and line cells first)."""
+    triangles = surface.GetNumberOfPolys()
+    add_cells(add_cells(surface, "Lines", [(0, 1)]), "Verts", [(2,)])
+    cell_ids = vtkIntArray()
+    cell_ids.SetName("InputCellId")
+    for c in range(surface.GetNumberOfCells()):
+        cell_ids.InsertNextValue(c)
+    surface.GetCellData().AddArray(cell_ids)
+    algorithm.SetInputData(surface)
+    errors = MessageRecorder(algorithm)
+    warnings = MessageRecorder(algorithm, vtkCommand.WarningEvent)
+    algorithm.Update()
+    out = algorithm.GetOutput()
+    check(not errors.messages and len(warnings.messages) == 1
+          and "1 vertex cell(s) and 1 line cell(s) are ignored" in warnings.text(),
+          f"{name}: mapped, one warning names the ignored cells ({errors.text()}{warnings.text()})")
+    mapped = out.GetCellData().GetArray("InputCellId")
+    check(out.GetNumberOfPolys() == triangles and mapped is not None
+          and [int(mapped.GetValue(c)) for c in range(triangles)] == list(range(2, 2 + triangles)),
+          f"{name}: output cell arrays follow the input's triangles")
 
 
 def check_failed_run(name, errors, pipeline_errors, words):

@@ -192,7 +192,7 @@ std::string checkCoordinatesAndAreas(const SurfaceMesh& mesh, Id id)
   }
   // Degenerate = area negligible against the square of the longest edge (a cap or needle
   // whose angles, and so the cotangent weights, are meaningless), or all points coincident.
-  bool coincidentPoints = false;
+  bool coincidentPoints = false, nearlyCoincidentPoints = false;
   for (size_t t = 0; t < mesh.triangles.size(); ++t)
   {
     const Triangle& tri = mesh.triangles[t];
@@ -204,19 +204,33 @@ std::string checkCoordinatesAndAreas(const SurfaceMesh& mesh, Id id)
     {
       bad.push_back(static_cast<std::int64_t>(t));
       coincidentPoints = coincidentPoints || shortest == 0.0;
+      nearlyCoincidentPoints = nearlyCoincidentPoints || shortest <= 1e-6 * longest;
     }
   }
   if (!bad.empty())
   {
     // Scans and exports often hold such triangles; say what removes them (measured: a face
-    // with 95 edges collapsed to a point maps after the clean, 0.0105 / 25.4 degrees).
-    msg << bad.size() << " triangle(s) have zero area (degenerate): triangle ids " << idList(bad)
-        << (coincidentPoints
-               ? ". Some have coincident points: vtkCleanPolyData with ConvertPolysToLines off "
-                 "(ParaView: Clean, Convert Polys To Lines unchecked) merges them and drops the "
-                 "triangles that collapse"
-               : ". Their points are collinear: collapse or flip them away first (e.g. CGAL's "
-                 "Polygon_mesh_processing::remove_degenerate_faces)");
+    // with 95 edges collapsed to a point maps after the clean, 0.0105 / 25.4 degrees; VTK's
+    // parametric ellipsoid, whose pole is several single-precision points 1e-8 apart, maps
+    // after a clean with Tolerance 1e-6, 0.0006).
+    msg << bad.size() << " triangle(s) have zero area (degenerate): triangle ids " << idList(bad);
+    if (coincidentPoints)
+    {
+      msg << ". Some have coincident points: vtkCleanPolyData with ConvertPolysToLines off "
+             "(ParaView: Clean, Convert Polys To Lines unchecked) merges them and drops the "
+             "triangles that collapse";
+    }
+    else if (nearlyCoincidentPoints)
+    {
+      msg << ". Some have points almost at the same place (an edge under 1e-6 of the "
+             "triangle's longest): vtkCleanPolyData with a small Tolerance, e.g. 1e-6 (ParaView: "
+             "Clean, Tolerance), merges them and drops the triangles that collapse";
+    }
+    else
+    {
+      msg << ". Their points are collinear: collapse or flip them away first (e.g. CGAL's "
+             "Polygon_mesh_processing::remove_degenerate_faces)";
+    }
   }
   return msg.str();
 }
