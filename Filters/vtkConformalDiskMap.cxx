@@ -102,6 +102,7 @@ int vtkConformalDiskMap::Execute(
   AddIntScalar(output, "ClippedEars", map.clippedEars);
   AddIntScalar(output, "FoldedWithMeshLaplacian", map.foldedWithMeshLaplacian);
   AddIntScalar(output, "IntrinsicLaplacian", map.intrinsicLaplacian ? 1 : 0);
+  AddIntScalar(output, "FlooredWeights", map.flooredWeights ? 1 : 0);
   AddIdScalar(output, "CenterPointId", centerPointId);
   AddIdScalar(output, "AlignPointId", stage.inputId(map.alignVertex));
   AddIntScalar(output, "FilledHoles", stage.filledHoles);

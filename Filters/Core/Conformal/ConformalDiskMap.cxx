@@ -185,7 +185,7 @@ ClippedMesh clipEars(const SurfaceMesh& mesh, const std::vector<int>& boundaryLo
 class DiskFlattening
 {
 public:
-  DiskFlattening(const SurfaceMesh& mesh, const ClippedMesh& clipped, bool intrinsicLaplacian)
+  DiskFlattening(const SurfaceMesh& mesh, const ClippedMesh& clipped, LaplacianWeights weights)
   {
     const size_t nv = mesh.points.size();
     Local.assign(nv, -1);
@@ -213,9 +213,10 @@ public:
     N = static_cast<int>(Vertices.size());
     NI = N - NB;
 
-    // Angle sums from the mesh; the cotangent Laplacian (positive semi-definite) from the mesh
-    // or from the intrinsic Delaunay triangulation of its metric (no negative weight, so the
-    // harmonic extension does not fold; see IntrinsicDelaunay.h).
+    // Angle sums from the mesh; the cotangent Laplacian (positive semi-definite) from the mesh,
+    // from the intrinsic Delaunay triangulation of its metric (no negative weight, so the
+    // harmonic extension does not fold that triangulation; see IntrinsicDelaunay.h), or the
+    // mesh's with its weights floored (none of the mesh's own triangles folds).
     AngleSum.assign(N, 0.0);
     std::vector<Triangle> kept;
     std::vector<std::array<double, 3>> lengths;
@@ -236,11 +237,7 @@ public:
       lengths.push_back({ edgeLength(mesh, tri[1], tri[2]), edgeLength(mesh, tri[2], tri[0]),
         edgeLength(mesh, tri[0], tri[1]) });
     }
-    const IntrinsicTriangulation intrinsic = intrinsicLaplacian
-      ? intrinsicDelaunay(kept, lengths)
-      : IntrinsicTriangulation{ kept, lengths, 0 };
-    IntrinsicFlips = intrinsic.flips;
-    L = cotangentLaplacian(intrinsic, N);
+    L = laplacianOf(kept, lengths, N, weights, IntrinsicFlips);
 
     BoundaryLength.resize(NB);
     for (int i = 0; i < NB; ++i)
@@ -801,7 +798,7 @@ void placePoints(const SurfaceMesh& mesh, const ClippedMesh& clipped, const Disk
 
 ConformalDiskMapResult computeWithLaplacian(const SurfaceMesh& mesh,
   const std::vector<int>& boundaryLoop, const ConformalDiskMapOptions& options,
-  bool intrinsicLaplacian)
+  LaplacianWeights weights)
 {
   ConformalDiskMapResult result;
   const int nv = static_cast<int>(mesh.points.size());
@@ -836,7 +833,7 @@ ConformalDiskMapResult computeWithLaplacian(const SurfaceMesh& mesh,
   auto t0 = Clock::now();
   const ClippedMesh clipped = clipEars(mesh, boundaryLoop);
   result.clippedEars = static_cast<int>(clipped.ears.size());
-  DiskFlattening disk(mesh, clipped, intrinsicLaplacian);
+  DiskFlattening disk(mesh, clipped, weights);
   result.intrinsicFlips = disk.IntrinsicFlips;
   if (!keepGoing(0.05))
   {
@@ -906,32 +903,49 @@ ConformalDiskMapResult computeWithLaplacian(const SurfaceMesh& mesh,
 ConformalDiskMapResult computeConformalDiskMap(const SurfaceMesh& mesh,
   const std::vector<int>& boundaryLoop, const ConformalDiskMapOptions& options)
 {
-  ConformalDiskMapResult result = computeWithLaplacian(mesh, boundaryLoop, options, false);
+  ConformalDiskMapResult result =
+    computeWithLaplacian(mesh, boundaryLoop, options, LaplacianWeights::Mesh);
   if (!result.status.error.empty() || result.status.aborted)
   {
     return result;
   }
   result.foldedWithMeshLaplacian = foldedTriangles(mesh, result.uv);
-  if (result.foldedWithMeshLaplacian == 0)
-  {
-    return result;
-  }
+  std::int64_t folded = result.foldedWithMeshLaplacian;
   ConformalDiskMapOptions again = options;
   if (options.progress)
   {
-    // Progress already reached 1: the second solve only checks for an abort.
+    // Progress already reached 1: the other solves only check for an abort.
     again.progress = [&options](double) { return options.progress(1.0); };
   }
-  ConformalDiskMapResult intrinsic = computeWithLaplacian(mesh, boundaryLoop, again, true);
-  if (intrinsic.status.aborted ||
-    (intrinsic.status.error.empty() &&
-      foldedTriangles(mesh, intrinsic.uv) < result.foldedWithMeshLaplacian))
+  // The floored weights are kept only where they unfold everything, as on the sphere: a
+  // crowded finger's collapse is not theirs to mend.
+  for (const LaplacianWeights fallback :
+    { LaplacianWeights::IntrinsicDelaunay, LaplacianWeights::Floored })
   {
-    intrinsic.intrinsicLaplacian = true;
-    intrinsic.foldedWithMeshLaplacian = result.foldedWithMeshLaplacian;
-    intrinsic.secondsFactorization += result.secondsFactorization;
-    intrinsic.secondsIterations += result.secondsIterations;
-    return intrinsic;
+    if (folded == 0)
+    {
+      break;
+    }
+    ConformalDiskMapResult other = computeWithLaplacian(mesh, boundaryLoop, again, fallback);
+    const std::int64_t otherFolded =
+      other.status.error.empty() && !other.status.aborted ? foldedTriangles(mesh, other.uv) : -1;
+    const bool better = fallback == LaplacianWeights::Floored
+      ? otherFolded == 0
+      : 0 <= otherFolded && otherFolded < folded;
+    if (other.status.aborted || better)
+    {
+      other.intrinsicLaplacian = fallback == LaplacianWeights::IntrinsicDelaunay;
+      other.flooredWeights = fallback == LaplacianWeights::Floored;
+      other.foldedWithMeshLaplacian = result.foldedWithMeshLaplacian;
+      other.secondsFactorization += result.secondsFactorization;
+      other.secondsIterations += result.secondsIterations;
+      result = std::move(other);
+      folded = otherFolded;
+      if (result.status.aborted)
+      {
+        break;
+      }
+    }
   }
   return result;
 }

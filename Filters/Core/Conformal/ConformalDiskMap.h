@@ -38,6 +38,9 @@ struct ConformalDiskMapResult
   // with the intrinsic Delaunay Laplacian, kept if it folds fewer (intrinsicLaplacian = true).
   std::int64_t foldedWithMeshLaplacian = 0;
   bool intrinsicLaplacian = false;
+  // Both cotangent Laplacians folded triangles, and the mesh's with every weight floored at a
+  // small positive value (CotangentLaplacian.h) folded none: that map was kept.
+  bool flooredWeights = false;
   int intrinsicFlips = 0; // edge flips to the intrinsic Delaunay triangulation
   double secondsFactorization = 0.0;
   double secondsIterations = 0.0;

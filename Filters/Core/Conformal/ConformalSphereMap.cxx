@@ -400,9 +400,8 @@ std::string checkOptions(const ConformalSphereMapOptions& options, const Surface
   return msg.str();
 }
 
-// The metric the Laplacian is built on: the mesh's own triangles, or the intrinsic Delaunay
-// triangulation of their edge lengths.
-IntrinsicTriangulation metricTriangulation(const SurfaceMesh& mesh, bool intrinsic)
+// The mesh's edge lengths per triangle, as intrinsicDelaunay takes them.
+std::vector<std::array<double, 3>> edgeLengths(const SurfaceMesh& mesh)
 {
   std::vector<std::array<double, 3>> lengths(mesh.triangles.size());
   for (size_t t = 0; t < mesh.triangles.size(); ++t)
@@ -413,8 +412,7 @@ IntrinsicTriangulation metricTriangulation(const SurfaceMesh& mesh, bool intrins
       lengths[t][k] = norm(mesh.points[tri[(k + 1) % 3]] - mesh.points[tri[(k + 2) % 3]]);
     }
   }
-  return intrinsic ? intrinsicDelaunay(mesh.triangles, lengths)
-                   : IntrinsicTriangulation{ mesh.triangles, lengths, 0 };
+  return lengths;
 }
 
 // The north pass's source: the discrete dipole at the puncture's centroid, whose continuous
@@ -617,57 +615,7 @@ void keepFinite(const SurfaceMesh& mesh, std::vector<Vec3> sphere, ConformalSphe
   result.maximumAngleDistortionDegrees = figures.maximumAngleDistortionDegrees;
 }
 
-// The edge weights the Laplacian is built with.
-enum class Weights
-{
-  Mesh,              // the mesh's cotangent weights
-  IntrinsicDelaunay, // those of its intrinsic Delaunay triangulation (none negative)
-  Floored,           // the mesh's, none below PositiveWeightFloor times their mean
-};
-
-// Where both cotangent Laplacians fold, it is at a coarse sharp corner: a point of three
-// triangles whose weight toward one neighbour is negative (the mesh's Laplacian puts it
-// outside its star) and whose intrinsic Delaunay triangulation keeps two neighbours (that one
-// puts it on the segment between them, its triangles degenerate): a pyramid's base corners, a
-// cone's or a capped cylinder's coarse rim. With every weight positive the point stays inside
-// the triangle of its three neighbours. The floor is small, so that elsewhere the weights are
-// the mesh's.
-constexpr double PositiveWeightFloor = 1e-2;
-
-SparseMatrix withFlooredWeights(const SparseMatrix& L)
-{
-  double sum = 0.0;
-  long long count = 0;
-  for (int j = 0; j < L.outerSize(); ++j)
-  {
-    for (SparseMatrix::InnerIterator it(L, j); it; ++it)
-    {
-      if (it.row() != it.col())
-      {
-        sum += std::abs(it.value());
-        ++count;
-      }
-    }
-  }
-  const double floor = count > 0 ? PositiveWeightFloor * sum / static_cast<double>(count) : 0.0;
-  std::vector<Eigen::Triplet<double>> entries;
-  entries.reserve(static_cast<size_t>(L.nonZeros()));
-  for (int j = 0; j < L.outerSize(); ++j)
-  {
-    for (SparseMatrix::InnerIterator it(L, j); it; ++it)
-    {
-      if (it.row() != it.col())
-      {
-        const double weight = std::max(-it.value(), floor);
-        entries.emplace_back(static_cast<int>(it.row()), static_cast<int>(it.col()), -weight);
-        entries.emplace_back(static_cast<int>(it.col()), static_cast<int>(it.col()), weight);
-      }
-    }
-  }
-  SparseMatrix floored(L.rows(), L.cols());
-  floored.setFromTriplets(entries.begin(), entries.end());
-  return floored;
-}
+using Weights = LaplacianWeights;
 
 ConformalSphereMapResult computeWithLaplacian(
   const SurfaceMesh& mesh, const ConformalSphereMapOptions& options, Weights weights)
@@ -689,12 +637,8 @@ ConformalSphereMapResult computeWithLaplacian(
 
   // 1. North pass: the dipole's harmonic potential, onto the sphere.
   auto t0 = Clock::now();
-  const IntrinsicTriangulation triangulation =
-    metricTriangulation(mesh, weights == Weights::IntrinsicDelaunay);
-  result.intrinsicFlips = triangulation.flips;
-  const SparseMatrix L = weights == Weights::Floored
-    ? withFlooredWeights(cotangentLaplacian(triangulation, nv))
-    : cotangentLaplacian(triangulation, nv);
+  const SparseMatrix L =
+    laplacianOf(mesh.triangles, edgeLengths(mesh), nv, weights, result.intrinsicFlips);
   result.punctureTriangle =
     options.punctureTriangle >= 0 ? options.punctureTriangle : mostRegularTriangle(mesh);
   const Triangle puncture = mesh.triangles[result.punctureTriangle];

@@ -7,6 +7,9 @@
 
 #include <Eigen/Sparse>
 
+#include <algorithm>
+#include <array>
+#include <cmath>
 #include <vector>
 
 namespace otparam
@@ -36,6 +39,71 @@ inline Eigen::SparseMatrix<double> cotangentLaplacian(
   Eigen::SparseMatrix<double> L(n, n);
   L.setFromTriplets(entries.begin(), entries.end());
   return L;
+}
+
+// The edge weights a conformal map's Laplacian is built with.
+enum class LaplacianWeights
+{
+  Mesh,              // the mesh's cotangent weights
+  IntrinsicDelaunay, // those of its intrinsic Delaunay triangulation (none negative)
+  Floored,           // the mesh's, none below PositiveWeightFloor times their mean
+};
+
+// Where both cotangent Laplacians fold, it is at a coarse sharp corner or a needle: a point of
+// three triangles whose weight toward one neighbour is negative (the mesh's Laplacian puts it
+// outside its star) and whose intrinsic Delaunay triangulation keeps two neighbours (that one
+// puts it on the segment between them, its triangles degenerate). With every weight of the
+// mesh's own triangles positive, a harmonic map with convex boundary values cannot fold them
+// (Tutte). The floor is small, so that elsewhere the weights are the mesh's.
+constexpr double PositiveWeightFloor = 1e-2;
+
+inline Eigen::SparseMatrix<double> withFlooredWeights(const Eigen::SparseMatrix<double>& L)
+{
+  double sum = 0.0;
+  long long count = 0;
+  for (int j = 0; j < L.outerSize(); ++j)
+  {
+    for (Eigen::SparseMatrix<double>::InnerIterator it(L, j); it; ++it)
+    {
+      if (it.row() != it.col())
+      {
+        sum += std::abs(it.value());
+        ++count;
+      }
+    }
+  }
+  const double floor = count > 0 ? PositiveWeightFloor * sum / static_cast<double>(count) : 0.0;
+  std::vector<Eigen::Triplet<double>> entries;
+  entries.reserve(static_cast<size_t>(L.nonZeros()));
+  for (int j = 0; j < L.outerSize(); ++j)
+  {
+    for (Eigen::SparseMatrix<double>::InnerIterator it(L, j); it; ++it)
+    {
+      if (it.row() != it.col())
+      {
+        const double weight = std::max(-it.value(), floor);
+        const int row = static_cast<int>(it.row()), col = static_cast<int>(it.col());
+        entries.emplace_back(row, col, -weight);
+        entries.emplace_back(col, col, weight);
+      }
+    }
+  }
+  Eigen::SparseMatrix<double> floored(L.rows(), L.cols());
+  floored.setFromTriplets(entries.begin(), entries.end());
+  return floored;
+}
+
+// The Laplacian of a mesh's triangles with the given weights (`triangles` and `lengths` as for
+// intrinsicDelaunay); `flips` gets the intrinsic Delaunay triangulation's edge flips.
+inline Eigen::SparseMatrix<double> laplacianOf(const std::vector<Triangle>& triangles,
+  const std::vector<std::array<double, 3>>& lengths, int n, LaplacianWeights weights, int& flips)
+{
+  const IntrinsicTriangulation triangulation = weights == LaplacianWeights::IntrinsicDelaunay
+    ? intrinsicDelaunay(triangles, lengths)
+    : IntrinsicTriangulation{ triangles, lengths, 0 };
+  flips = triangulation.flips;
+  const Eigen::SparseMatrix<double> L = cotangentLaplacian(triangulation, n);
+  return weights == LaplacianWeights::Floored ? withFlooredWeights(L) : L;
 }
 
 } // namespace otparam

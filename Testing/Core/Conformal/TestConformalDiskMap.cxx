@@ -286,6 +286,26 @@ TEST(ConformalDiskMap, SteepBumpsDoNotFold)
   EXPECT_LE(largestBoundaryRadiusError(m), 1e-14);
 }
 
+TEST(ConformalDiskMap, DeepReliefUnfoldsWithFlooredWeights)
+{
+  // face_choi_bff_17k with its relief 5 times deeper: needle triangles on the steep sides.
+  // The mesh's Laplacian folds 574 triangles, the intrinsic Delaunay one still 27 (points
+  // left with two intrinsic neighbours), and the area-preserving map stopped in its first
+  // staged transport; with the weights floored at a small positive value none folds (Tutte:
+  // positive weights, boundary on the circle).
+  SurfaceMesh mesh = readMesh(sharedMesh("face_choi_bff_17k.obj"));
+  for (Vec3& p : mesh.points)
+  {
+    p.z *= 5.0;
+  }
+  const Mapped m = mapMesh(mesh);
+  EXPECT_GT(m.map.foldedWithMeshLaplacian, 100);
+  EXPECT_FALSE(m.map.intrinsicLaplacian);
+  EXPECT_TRUE(m.map.flooredWeights);
+  EXPECT_EQ(m.figures.flippedTriangles, 0);
+  EXPECT_LE(largestBoundaryRadiusError(m), 1e-14);
+}
+
 TEST(ConformalDiskMap, RejectsBadCentreAndAlignVertices)
 {
   const SurfaceMesh mesh = makeHemisphere(4);
