@@ -106,6 +106,7 @@ int vtkConformalSphereMap::Execute(
   AddIntScalar(output, "FlippedWithMeshLaplacian", map.flippedWithMeshLaplacian);
   AddIntScalar(output, "IntrinsicLaplacian", map.intrinsicLaplacian ? 1 : 0);
   AddIntScalar(output, "FlooredWeights", map.flooredWeights ? 1 : 0);
+  AddIntScalar(output, "LiftedFromTheDisk", map.liftedFromTheDisk ? 1 : 0);
   AddScalar(output, "SecondsFactorization", map.secondsFactorization);
   AddScalar(output, "SecondsSolve", map.secondsSolve);
   AddScalar(output, "SecondsBalance", map.secondsBalance);

@@ -40,6 +40,7 @@
 // face inward (negative enclosed volume), whose map is then the mirror image of the surface.
 #include "Conformal/ConformalSphereMap.h"
 
+#include "Conformal/ConformalDiskMap.h"
 #include "Conformal/CotangentLaplacian.h"
 
 #include "Mesh/DistortionMetrics.h"
@@ -717,6 +718,46 @@ ConformalSphereMapResult computeWithLaplacian(
 }
 } // namespace
 
+namespace
+{
+// The last fallback, which cannot fold the surface's triangles but its puncture's: the surface
+// less its puncture triangle is a disk whose conformal map (ConformalDiskMap, with floored
+// weights where both cotangent Laplacians fold: Tutte) folds none of them; lifted by inverse
+// stereographic projection with the disk's rim at height 0.8 (the puncture the cap above),
+// oriented and balanced as the two passes are. Measured where the passes fold (coarse sharp
+// corners): VTK's capped cone and cylinder at resolution 24, a pyramid with a low apex.
+ConformalSphereMapResult throughTheDisk(
+  const SurfaceMesh& mesh, const ConformalSphereMapOptions& options, int puncture)
+{
+  ConformalSphereMapResult result;
+  result.punctureTriangle = puncture;
+  SurfaceMesh punctured = mesh;
+  punctured.triangles.erase(punctured.triangles.begin() + puncture);
+  std::vector<int> loop;
+  result.status.error = checkDiskTopology(punctured, loop);
+  if (!result.status.error.empty())
+  {
+    return result;
+  }
+  ConformalDiskMapOptions diskOptions;
+  diskOptions.progress = options.progress;
+  const ConformalDiskMapResult disk = computeConformalDiskMap(punctured, loop, diskOptions);
+  result.status = disk.status;
+  if (!result.status.ok())
+  {
+    return result;
+  }
+  std::vector<Vec3> sphere(mesh.points.size());
+  for (size_t v = 0; v < sphere.size(); ++v)
+  {
+    sphere[v] = inverseStereographic(3.0 * Complex(disk.uv[v].x, disk.uv[v].y));
+  }
+  orientAndBalance(mesh, areaWeights(mesh), options, Vec3{ 0.0, 0.0, 1.0 }, sphere, result);
+  keepFinite(mesh, std::move(sphere), result);
+  return result;
+}
+} // namespace
+
 Vec3 pushedAreaCentre(const SurfaceMesh& mesh, const std::vector<Vec3>& sphere)
 {
   Eigen::Vector3d centre;
@@ -778,6 +819,19 @@ ConformalSphereMapResult computeConformalSphereMap(
       result.secondsFactorization += other.secondsFactorization;
       result.secondsSolve += other.secondsSolve;
       result.secondsBalance += other.secondsBalance;
+    }
+  }
+  if (result.status.ok() && result.flippedTriangles > 0)
+  {
+    ConformalSphereMapResult lifted = throughTheDisk(mesh, again, result.punctureTriangle);
+    if (lifted.status.aborted || (lifted.status.error.empty() && lifted.flippedTriangles == 0))
+    {
+      lifted.liftedFromTheDisk = true;
+      lifted.flippedWithMeshLaplacian = result.flippedWithMeshLaplacian;
+      lifted.secondsFactorization += result.secondsFactorization;
+      lifted.secondsSolve += result.secondsSolve;
+      lifted.secondsBalance += result.secondsBalance;
+      return lifted;
     }
   }
   if (result.status.ok() && result.flippedTriangles > 0)

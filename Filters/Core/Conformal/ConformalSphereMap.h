@@ -51,6 +51,9 @@ struct ConformalSphereMapResult
   // small positive value flipped fewer: that map was kept (no longer exactly conformal at the
   // floored edges: a coarse sharp corner's).
   bool flooredWeights = false;
+  // ... and the floored weights too: the map is the surface less its puncture mapped to the
+  // disk (ConformalDiskMap, which cannot fold it), lifted by inverse stereographic projection.
+  bool liftedFromTheDisk = false;
   int intrinsicFlips = 0;
   int balanceIterations = 0;    // Newton steps of the final Moebius balancing
   double balanceResidual = 0.0; // |centre of mass| / total mass after balancing

@@ -604,6 +604,16 @@ void warnAboutTheMap(Run& run, const char* where)
              "too long for its width). Cut the surface open closer to the protrusion, or map its "
              "parts separately.";
     }
+    else
+    {
+      // Measured: VTK's cube (8 points), capped cone (25) and a pyramid over a grid with a low
+      // apex, whose few triangles cannot take the areas the samples give them.
+      msg << " The map is far from area-preserving there (mean |log area ratio| "
+          << run.figures.meanAbsLogAreaRatio << "): the mesh is too coarse for its shape ("
+          << run.conformal.surface.mesh.points.size()
+          << " points; sharp corners, fans of thin triangles): subdivide it, e.g. with a linear "
+             "or Loop subdivision.";
+    }
     run.status.warnings.push_back(msg.str());
     msg.str("");
   }

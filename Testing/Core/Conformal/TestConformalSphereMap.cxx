@@ -297,6 +297,19 @@ TEST(ConformalSphereMap, PyramidIsMappedWithoutFoldsAtItsCorners)
   EXPECT_LE(norm(pushedAreaCentre(mesh, c.map.sphere)), 1e-6);
 }
 
+// A lower apex (12 above the 24 x 24 grid): the floored weights fold triangles too (900), and
+// the map is the punctured surface's disk map lifted by inverse stereographic projection.
+TEST(ConformalSphereMap, LowPyramidIsLiftedFromTheDisk)
+{
+  const SurfaceMesh mesh = pyramidMesh(24, 12.0);
+  const SphereCase c = mapSurface(mesh);
+  ASSERT_TRUE(c.map.status.ok()) << c.map.status.error;
+  EXPECT_GT(c.map.flippedWithMeshLaplacian, 0);
+  EXPECT_TRUE(c.map.liftedFromTheDisk);
+  EXPECT_EQ(c.map.flippedTriangles, 0);
+  EXPECT_LE(norm(pushedAreaCentre(mesh, c.map.sphere)), 1e-6);
+}
+
 // Triangles facing inward: the map is the mirror image, still counter-clockwise seen from
 // outside, with the same angles.
 TEST(ConformalSphereMap, InwardTrianglesAreMirrored)
