@@ -899,7 +899,8 @@ ConformalDiskMapResult computeWithLaplacian(const SurfaceMesh& mesh,
 // fold (a height field with steep bumps: 200 flipped triangles). The intrinsic Delaunay
 // Laplacian cannot fold, but on scans full of slivers it is less faithful to their triangles
 // (face_maxplanck_partial_32k: mean angle error 1.53 instead of 0.51 degrees). So it is the
-// fallback, kept when it folds fewer triangles.
+// fallback, kept when it folds fewer triangles. It folds the mesh's triangles where it leaves a
+// point two neighbours; the floored weights then cannot fold them (CotangentLaplacian.h).
 ConformalDiskMapResult computeConformalDiskMap(const SurfaceMesh& mesh,
   const std::vector<int>& boundaryLoop, const ConformalDiskMapOptions& options)
 {

@@ -766,8 +766,11 @@ Vec3 pushedAreaCentre(const SurfaceMesh& mesh, const std::vector<Vec3>& sphere)
 }
 
 // As in the disk map: the mesh's own cotangent Laplacian is the most faithful to its triangles
-// but can fold across obtuse ones (negative weights); the intrinsic Delaunay Laplacian cannot,
-// so it is the fallback, kept when it flips fewer triangles.
+// but can fold across obtuse ones (negative weights); the intrinsic Delaunay Laplacian cannot
+// fold its own triangulation, so it is the first fallback, kept when it flips fewer of the
+// mesh's triangles. Then the floored weights and last the disk map lifted (throughTheDisk),
+// each kept only if nothing flips (coarse sharp corners; a crowded surface's folds are its
+// stages' to heal).
 ConformalSphereMapResult computeConformalSphereMap(
   const SurfaceMesh& mesh, const ConformalSphereMapOptions& options)
 {

@@ -918,8 +918,6 @@ void composeOnTheSphere(const AreaPreservingOptions& options, SphereParameteriza
     run.status.error = std::string("composition: ") + e.what();
   }
 }
-} // namespace
-
 // A conformal sphere map can fold where the surface is not crowded: at a coarse sharp corner
 // (the base corners of a pyramid, a vertex of three triangles whose cotangent weights are
 // negative, and whose intrinsic Delaunay triangulation leaves it two neighbours). The sampler
@@ -932,6 +930,8 @@ void untangleConformalStart(SphereParameterizationResult& run)
   std::vector<double> perPoint;
   computeSphereAreaDensity(mesh, run.startSphere, run.startDensity, perPoint);
 }
+
+} // namespace
 
 //------------------------------------------------------------------------------
 SphereParameterizationResult parameterizeSphere(
