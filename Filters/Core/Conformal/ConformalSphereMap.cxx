@@ -413,21 +413,6 @@ std::string checkOptions(const ConformalSphereMapOptions& options, const Surface
   return msg.str();
 }
 
-// The mesh's edge lengths per triangle, as intrinsicDelaunay takes them.
-std::vector<std::array<double, 3>> edgeLengths(const SurfaceMesh& mesh)
-{
-  std::vector<std::array<double, 3>> lengths(mesh.triangles.size());
-  for (size_t t = 0; t < mesh.triangles.size(); ++t)
-  {
-    const auto& tri = mesh.triangles[t];
-    for (int k = 0; k < 3; ++k)
-    {
-      lengths[t][k] = norm(mesh.points[tri[(k + 1) % 3]] - mesh.points[tri[(k + 2) % 3]]);
-    }
-  }
-  return lengths;
-}
-
 // The north pass's source: the discrete dipole at the puncture's centroid, whose continuous
 // solution is 1 / w (w a complex coordinate of the triangle's plane): in weak form, corner k
 // gets 2 pi (d/dx - i d/dy) of its hat function (constant factors dropped: the scale is fixed
@@ -650,8 +635,8 @@ ConformalSphereMapResult computeWithLaplacian(
 
   // 1. North pass: the dipole's harmonic potential, onto the sphere.
   auto t0 = Clock::now();
-  const SparseMatrix L =
-    laplacianOf(mesh.triangles, edgeLengths(mesh), nv, weights, result.intrinsicFlips);
+  const SparseMatrix L = laplacianOf(
+    mesh.triangles, edgeLengthsOf(mesh.points, mesh.triangles), nv, weights, result.intrinsicFlips);
   result.punctureTriangle =
     options.punctureTriangle >= 0 ? options.punctureTriangle : mostRegularTriangle(mesh);
   const Triangle puncture = mesh.triangles[result.punctureTriangle];

@@ -22,16 +22,7 @@ constexpr double TwoPi = 6.283185307179586476925286766559;
 
 IntrinsicTriangulation intrinsicTriangulationOf(const SurfaceMesh& mesh)
 {
-  std::vector<std::array<double, 3>> lengths(mesh.triangles.size());
-  for (size_t t = 0; t < mesh.triangles.size(); ++t)
-  {
-    const Triangle& tri = mesh.triangles[t];
-    for (int k = 0; k < 3; ++k)
-    {
-      lengths[t][k] = norm(mesh.points[tri[(k + 2) % 3]] - mesh.points[tri[(k + 1) % 3]]);
-    }
-  }
-  return intrinsicDelaunay(mesh.triangles, lengths);
+  return intrinsicDelaunay(mesh.triangles, edgeLengthsOf(mesh.points, mesh.triangles));
 }
 
 double heronArea(const std::array<double, 3>& l)

@@ -170,4 +170,20 @@ IntrinsicTriangulation intrinsicDelaunay(
   return result;
 }
 
+//------------------------------------------------------------------------------
+std::vector<std::array<double, 3>> edgeLengthsOf(
+  const std::vector<Vec3>& points, const std::vector<Triangle>& triangles)
+{
+  std::vector<std::array<double, 3>> lengths(triangles.size());
+  for (size_t t = 0; t < triangles.size(); ++t)
+  {
+    const Triangle& tri = triangles[t];
+    for (int k = 0; k < 3; ++k)
+    {
+      lengths[t][k] = norm(points[tri[(k + 2) % 3]] - points[tri[(k + 1) % 3]]);
+    }
+  }
+  return lengths;
+}
+
 } // namespace otparam

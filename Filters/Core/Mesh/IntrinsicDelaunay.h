@@ -31,6 +31,10 @@ struct IntrinsicTriangulation
 IntrinsicTriangulation intrinsicDelaunay(
   const std::vector<Triangle>& triangles, const std::vector<std::array<double, 3>>& lengths);
 
+// The extrinsic edge lengths of a mesh's triangles, as intrinsicDelaunay takes them.
+std::vector<std::array<double, 3>> edgeLengthsOf(
+  const std::vector<Vec3>& points, const std::vector<Triangle>& triangles);
+
 // Half the cotangent of the angle at corner k of a triangle with these edge lengths.
 double halfCotangent(const std::array<double, 3>& lengths, int k);
 
