@@ -5,9 +5,9 @@ field data that the reference scorer (param_metrics.py --sphere) reproduces to 1
 texture coordinates are longitude / latitude in [0, 1]. The spot with three small holes goes to
 the sphere too (filled, then the fill dropped). Bad domains: an open surface with Domain Sphere
 (a hole of half the surface), a closed one with Domain Disk, a torus (genus named), two spheres (components
-named), Domain 7; each one error, empty outputs, the input untouched. Coarse sharp corners: a tall
-pyramid over a grid maps; VTK's capped cone at resolution 24 (a fan of thin triangles at its
-tip and base) maps with a warning saying to subdivide it, and maps well once subdivided twice."""
+named), Domain 7; each one error, empty outputs, the input untouched. Coarse sharp corners: pyramids over
+a grid, VTK's capped cone and cylinder at resolution 24 (fans of long thin triangles) map with
+no flip; the cone at resolution 60 maps with a warning saying to subdivide it."""
 
 import math
 
@@ -21,7 +21,7 @@ from vtkmodules.vtkCommonCore import vtkCommand
 from vtkmodules.vtkCommonExecutionModel import vtkAlgorithm
 from vtkmodules.vtkFiltersCore import vtkCleanPolyData, vtkTriangleFilter
 from vtkmodules.vtkFiltersModeling import vtkLinearSubdivisionFilter
-from vtkmodules.vtkFiltersSources import vtkConeSource, vtkSuperquadricSource
+from vtkmodules.vtkFiltersSources import vtkConeSource, vtkCylinderSource, vtkSuperquadricSource
 
 scorer = param_metrics()
 
@@ -167,9 +167,8 @@ def pyramid(n, height):
 check_sphere_map("pyramid over a 24 x 24 grid, apex 72 above", pyramid(24, 72.0), 0.005)
 
 
-def cone(subdivisions):
-    source = vtkConeSource()
-    source.SetResolution(24)
+def vtk_source(source, subdivisions=0):
+    """A VTK source as a user prepares it: triangulated, cleaned, optionally subdivided."""
     triangles = vtkTriangleFilter()
     triangles.SetInputConnection(source.GetOutputPort())
     clean = vtkCleanPolyData()
@@ -183,20 +182,41 @@ def cone(subdivisions):
     return last.GetOutput()
 
 
-# VTK's cone as it comes (25 points): its conformal map, lifted from the disk, folds nothing,
-# but 46 triangles cannot take the areas 5000 samples give them: a map with a flip and a
-# warning that says to subdivide.
+def cone(resolution, subdivisions=0):
+    source = vtkConeSource()
+    source.SetResolution(resolution)
+    return vtk_source(source, subdivisions)
+
+
+def cylinder(resolution):
+    source = vtkCylinderSource()
+    source.SetResolution(resolution)
+    return vtk_source(source)
+
+
+# Coarse shapes whose stars span more than a hemisphere of the sphere (the long fan triangles
+# of a cone's tip and base, a cylinder's sides): the sphere's untangling moves such a vertex
+# free of any chart. Until then the pyramid and the cylinder were refused (their conformal maps
+# folded 9 and 3 triangles, 3 and 1 after untangling) and the cone mapped with one flipped
+# triangle (mean |log area ratio| 8.0).
+check_sphere_map("pyramid over a 24 x 24 grid, apex 24 above", pyramid(24, 24.0), 0.005)
+check_sphere_map("VTK's cone, resolution 24", cone(24), 0.005)
+check_sphere_map("VTK's capped cylinder, resolution 24", cylinder(24), 0.005)
+check_sphere_map("VTK's cone, resolution 24, subdivided once", cone(24, 1), 0.01)
+
+# VTK's cone at resolution 60 (61 points): 10 triangles stay flipped, and the warning gives the
+# figure and says to subdivide.
 f = vtkAreaPreservingParam()
-f.SetInputData(cone(0))
+f.SetInputData(cone(60))
 errors = MessageRecorder(f)
 warnings = MessageRecorder(f, vtkCommand.WarningEvent)
 f.Update()
-check(not errors.messages and f.GetOutput().GetNumberOfPoints() == 25
-      and "too coarse for its shape (25 points" in warnings.text()
+check(not errors.messages and f.GetOutput().GetNumberOfPoints() == 61
+      and "too coarse for its shape (61 points" in warnings.text()
       and "subdivide" in warnings.text(),
-      f"VTK's cone, resolution 24: a warning says the mesh is too coarse ({errors.text()}"
+      f"VTK's cone, resolution 60: a warning says the mesh is too coarse ({errors.text()}"
       f"{warnings.text()})")
-check_sphere_map("VTK's cone, resolution 24, subdivided twice", cone(2), 0.08)
+check_sphere_map("VTK's cone, resolution 24, subdivided twice", cone(24, 2), 0.08)
 
 # VTK's superquadric triangulated and cleaned as a user would: the clean leaves the triangles it
 # collapses at the poles as 64 line cells, which the filter leaves out with a warning.

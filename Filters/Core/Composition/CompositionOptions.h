@@ -27,6 +27,11 @@ struct CompositionOptions
   // The share of the domain each triangle's area is corrected towards (summing to 1); empty:
   // its share of the surface. A staged transport's stage aims at its clamped density's shares.
   std::vector<double> targetAreaShares;
+  // The sphere's untangling also moves a vertex whose star no gnomonic chart at it holds (a
+  // coarse mesh's long fan triangles) free of charts. Off for a staged transport's stages, whose
+  // maps folded at double precision's end have such stars everywhere: moved, they broke a closed
+  // finger's second stage (L / rho = 50).
+  bool untangleWideStars = true;
   // Called with the fraction done; returning false aborts.
   std::function<bool(double)> progress;
 };

@@ -143,9 +143,123 @@ struct GnomonicChart
   composition::SphereGeometry::Frame Frame;
 };
 
+// The unit vector p that maximizes min_k det(p, b_k, c_k) = p . n_k over a star's rim edges
+// (b_k, c_k), n_k = b_k x c_k: every chordal triangle (p, b_k, c_k) positive seen from outside,
+// with no chart, so for stars that span more than a hemisphere (a coarse cone's long fan
+// triangles), where the gnomonic chart cannot hold the rim. The optimum over the sphere has one,
+// two or three active n_k (Lagrange: p is a positive combination of them), so every such
+// candidate is tried (stars are small), as maximizeSmallestArea does in the plane. `start` is
+// kept unless some direction does better.
+Vec3 maximizeSmallestVolume(const std::vector<Vec3>& normals, const Vec3& start)
+{
+  auto smallest = [&normals](const Vec3& p)
+  {
+    double value = HUGE_VAL;
+    for (const Vec3& n : normals)
+    {
+      value = std::min(value, dot(p, n));
+    }
+    return value;
+  };
+  Vec3 best = start;
+  double bestValue = smallest(best);
+  auto consider = [&](Vec3 p)
+  {
+    const double length = norm(p);
+    if (!(length > 1e-300))
+    {
+      return;
+    }
+    p = (1.0 / length) * p;
+    const double value = smallest(p);
+    if (value > bestValue)
+    {
+      bestValue = value;
+      best = p;
+    }
+  };
+  const size_t m = std::min<size_t>(normals.size(), 16);
+  for (size_t i = 0; i < m; ++i)
+  {
+    consider(normals[i]);
+    for (size_t j = i + 1; j < m; ++j)
+    {
+      // In the plane of n_i and n_j, the direction equally far along both.
+      const Vec3 d = normals[i] - normals[j];
+      const double dd = dot(d, d);
+      if (dd > 0.0)
+      {
+        consider(normals[i] - (dot(normals[i], d) / dd) * d);
+      }
+      for (size_t k = j + 1; k < m; ++k)
+      {
+        const Vec3 p = cross(d, normals[i] - normals[k]); // p . n_i = p . n_j = p . n_k
+        consider(dot(p, normals[i]) >= 0.0 ? p : -1.0 * p);
+      }
+    }
+  }
+  return best;
+}
+
+// How many times the rim of u's star winds around u's image: the signed angles, seen from
+// outside, between consecutive rim vertices' directions in the tangent plane at u, over 2 pi.
+int windingAround(int u, const composition::VertexStars& stars, const std::vector<Vec3>& sphere)
+{
+  const Vec3 a = sphere[u];
+  double turn = 0.0;
+  for (int e = stars.offsets[u]; e < stars.offsets[u + 1]; ++e)
+  {
+    const Vec3 b = sphere[stars.entries[e][1]], c = sphere[stars.entries[e][2]];
+    turn += std::atan2(det(a, b, c), dot(b, c) - dot(b, a) * dot(c, a));
+  }
+  return static_cast<int>(std::lround(turn / (2.0 * M_PI)));
+}
+
+// Vertex v moved by maximizeSmallestVolume where that makes its whole star positive, winding
+// once around it, and leaves each rim vertex's star winding once or as before: positive
+// triangles alone allow a star that wraps twice around its vertex, and moves free of any chart
+// made maps that covered the sphere 2 or 14 times (VTK's cylinder and cone at resolution 60,
+// subdivided once). Returns whether v moved.
+bool freeStarByVolume(int v, const composition::VertexStars& stars, std::vector<Vec3>& sphere)
+{
+  std::vector<Vec3> normals;
+  std::vector<std::pair<int, int>> rimWindings;
+  for (int e = stars.offsets[v]; e < stars.offsets[v + 1]; ++e)
+  {
+    const int b = stars.entries[e][1];
+    normals.push_back(cross(sphere[b], sphere[stars.entries[e][2]]));
+    rimWindings.emplace_back(b, windingAround(b, stars, sphere));
+  }
+  const Vec3 best = maximizeSmallestVolume(normals, sphere[v]);
+  for (const Vec3& n : normals)
+  {
+    if (!(dot(best, n) > 0.0))
+    {
+      return false;
+    }
+  }
+  const Vec3 before = sphere[v];
+  sphere[v] = best;
+  bool windsOnce = windingAround(v, stars, sphere) == 1;
+  for (const auto& [b, winding] : rimWindings)
+  {
+    const int after = windingAround(b, stars, sphere);
+    windsOnce = windsOnce && (after == 1 || after == winding);
+  }
+  if (!windsOnce)
+  {
+    sphere[v] = before;
+  }
+  return windsOnce;
+}
+
 // Moves vertex v to the point of the gnomonic chart at its image that maximizes the smallest
-// signed area of its star (Untangling.h), then back onto the sphere. Returns whether it moved.
-bool untangleVertex(int v, const composition::VertexStars& stars, std::vector<Vec3>& sphere)
+// signed area of its star (Untangling.h), then back onto the sphere. A star whose rim that chart
+// cannot hold (wider than a hemisphere, as around a coarse cone's long fan triangles, or a vertex
+// on the far side of its rim) goes where maximizeSmallestVolume frees it, if anywhere and if
+// `wideStars`. Returns whether v moved.
+bool untangleVertex(
+  int v, const composition::VertexStars& stars, bool wideStars, std::vector<Vec3>& sphere)
 {
   const GnomonicChart chart(sphere[v]);
   std::vector<std::pair<Vec2, Vec2>> rim;
@@ -154,7 +268,7 @@ bool untangleVertex(int v, const composition::VertexStars& stars, std::vector<Ve
     const Vec3 b = sphere[stars.entries[e][1]], c = sphere[stars.entries[e][2]];
     if (!chart.contains(b) || !chart.contains(c))
     {
-      return false;
+      return wideStars && freeStarByVolume(v, stars, sphere);
     }
     rim.emplace_back(chart.toChart(b), chart.toChart(c));
   }
@@ -219,15 +333,15 @@ std::int64_t reembedOnSphere(const SurfaceMesh& surface, const composition::Vert
 }
 
 // Step 2: vertex by vertex, then patches re-embedded where that is not enough.
-std::int64_t untangleOnSphere(
-  const SurfaceMesh& surface, const composition::VertexStars& stars, std::vector<Vec3>& sphere)
+std::int64_t untangleOnSphere(const SurfaceMesh& surface, const composition::VertexStars& stars,
+  bool wideStars, std::vector<Vec3>& sphere)
 {
   const size_t n = sphere.size();
   auto untangleLocally = [&]
   {
     return composition::untangleInRings(
       stars, n, [&] { return flippedOnSphere(surface, sphere); },
-      [&](int v) { return untangleVertex(v, stars, sphere); },
+      [&](int v) { return untangleVertex(v, stars, wideStars, sphere); },
       [&](int t) { return surface.triangles[t]; });
   };
   const std::int64_t moved = untangleLocally();
@@ -341,7 +455,7 @@ bool correctOnSphere(const SurfaceMesh& surface, const composition::VertexStars&
 std::int64_t untangleSphereMap(const SurfaceMesh& surface, std::vector<Vec3>& sphere)
 {
   const composition::VertexStars stars(sphere.size(), surface.triangles);
-  return untangleOnSphere(surface, stars, sphere);
+  return untangleOnSphere(surface, stars, true, sphere);
 }
 
 SphereCompositionResult composeOnSphere(const SurfaceMesh& surface,
@@ -375,7 +489,8 @@ SphereCompositionResult composeOnSphere(const SurfaceMesh& surface,
   t0 = Clock::now();
   result.sphere = result.interpolated;
   const composition::VertexStars stars(conformal.size(), surface.triangles);
-  result.untangledVertices = untangleOnSphere(surface, stars, result.sphere);
+  result.untangledVertices =
+    untangleOnSphere(surface, stars, options.untangleWideStars, result.sphere);
   result.secondsUntangling = secondsSince(t0);
   // As on the disk: the untangled map before the correction.
   result.meanAbsLogAreaRatioInterpolated =

@@ -8,7 +8,9 @@
 //    sphere, A, B, C the samples' images.
 // 2. Untangling, as on the disk (Untangling.h), each vertex moved in the gnomonic chart at its
 //    own image, where a chordal triangle's orientation seen from outside is the sign of its
-//    planar area.
+//    planar area. A star that chart cannot hold (wider than a hemisphere: a coarse mesh's long
+//    fan triangles) is freed with no chart, where det(p, b, c) is linear in the vertex p, if
+//    CompositionOptions::untangleWideStars.
 // 3. Area correction (optional, on by default), as on the disk (AreaCorrection.h) with
 //    spherical triangle areas and steps in each vertex's tangent plane: the interpolation
 //    between samples cannot follow the mesh-scale noise of the conformal factor (spot, brain:

@@ -432,8 +432,11 @@ struct SphereStaging
     const SphereSamplingStage& sampling, const SphereTransportStage& transport,
     const std::vector<Vec3>& diracs, const CompositionOptions& options)
   {
+    CompositionOptions stageOptions = options;
+    stageOptions.untangleWideStars = false;
     return composeOnSphere(run.conformal.surface.mesh, run.startSphere, transport.diracs,
-      diracTriangulation(sampling, transport, diracs.size()), transport.result.centroids, options);
+      diracTriangulation(sampling, transport, diracs.size()), transport.result.centroids,
+      stageOptions);
   }
   static void adopt(SphereParameterizationResult& run, const SphereCompositionResult& composed)
   {

@@ -1,5 +1,6 @@
 // The whole sphere pipeline (parameterizeSphere) against maps known exactly (sphere.md, "Exact
 // checks") and on the shared closed meshes.
+#include "Composition/SphereComposition.h"
 #include "FingerMesh.h"
 #include "MeshFiles.h"
 #include "Pipeline/AreaPreservingPipeline.h"
@@ -60,6 +61,31 @@ void expectValidMap(const SphereParameterizationResult& r)
   {
     ASSERT_NEAR(norm(p), 1.0, 1e-12);
   }
+}
+
+// An octahedron whose top vertex lies below its equator: its four triangles are flipped, and
+// its star's rim (the equator) lies beyond every gnomonic chart at its image, so the chart-based
+// move cannot free it; the move free of charts puts it back at the top.
+TEST(SphereComposition, UntanglesAStarWiderThanAHemisphere)
+{
+  const std::vector<Vec3> corners = { { 1, 0, 0 }, { -1, 0, 0 }, { 0, 1, 0 }, { 0, -1, 0 },
+    { 0, 0, 1 }, { 0, 0, -1 } };
+  const SurfaceMesh octahedron = testing::convexHullMesh(corners);
+  std::vector<Vec3> sphere = corners;
+  sphere[4] = normalized(Vec3{ 1.0, 1.0, -0.2 });
+  auto flipped = [&]
+  {
+    int count = 0;
+    for (const Triangle& t : octahedron.triangles)
+    {
+      count += dot(sphere[t[0]], cross(sphere[t[1]], sphere[t[2]])) > 0.0 ? 0 : 1;
+    }
+    return count;
+  };
+  ASSERT_EQ(flipped(), 4);
+  EXPECT_GT(untangleSphereMap(octahedron, sphere), 0);
+  EXPECT_EQ(flipped(), 0);
+  EXPECT_GT(sphere[4].z, 0.99);
 }
 
 // NumberOfSamples 0 (the default) follows the surface: 5000, or one per 50 points above 250k.
