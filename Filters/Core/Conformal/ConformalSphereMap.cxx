@@ -750,6 +750,36 @@ Vec3 pushedAreaCentre(const SurfaceMesh& mesh, const std::vector<Vec3>& sphere)
   return fromEigen(centre);
 }
 
+namespace
+{
+// Where every Laplacian folds, why: a map that crowds a long protrusion past double precision
+// (TestCrowdingSphere's closed fingers, two tubes of 60 cells: 368 folds), or a mesh too coarse
+// around a sharp feature (VTK's cone at resolution 60 subdivided once).
+std::string foldWarning(const SurfaceMesh& mesh, const ConformalSphereMapResult& result)
+{
+  std::vector<double> density, perPoint;
+  computeSphereAreaDensity(mesh, result.sphere, density, perPoint);
+  const double range = rangeOf(density);
+  std::ostringstream msg;
+  msg << result.flippedTriangles
+      << " triangle(s) are flipped on the sphere (clockwise seen from outside) with the mesh's "
+         "cotangent Laplacian, the intrinsic Delaunay one, and the mesh's with its weights made "
+         "positive. ";
+  if (range > CrowdedDensityRange)
+  {
+    msg << "The map crowds part of the surface (its area density spans " << range
+        << ": a long protrusion such as a finger, a limb or a tail) beyond what double precision "
+           "resolves there.";
+  }
+  else
+  {
+    msg << "The mesh is too coarse around a sharp feature: refine it (e.g. with a linear or "
+           "Loop subdivision).";
+  }
+  return msg.str();
+}
+} // namespace
+
 // As in the disk map: the mesh's own cotangent Laplacian is the most faithful to its triangles
 // but can fold across obtuse ones (negative weights); the intrinsic Delaunay Laplacian cannot
 // fold its own triangulation, so it is the first fallback, kept when it flips fewer of the
@@ -824,13 +854,7 @@ ConformalSphereMapResult computeConformalSphereMap(
   }
   if (result.status.ok() && result.flippedTriangles > 0)
   {
-    std::ostringstream msg;
-    msg << result.flippedTriangles
-        << " triangle(s) are flipped on the sphere (clockwise seen from outside) with the mesh's "
-           "cotangent Laplacian, the intrinsic Delaunay one, and the mesh's with its weights "
-           "made positive. The mesh is too coarse around a sharp feature: refine it (e.g. with "
-           "a linear or Loop subdivision).";
-    result.status.warnings.push_back(msg.str());
+    result.status.warnings.push_back(foldWarning(mesh, result));
   }
   return result;
 }

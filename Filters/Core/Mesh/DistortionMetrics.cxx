@@ -281,4 +281,11 @@ void computeSphereAreaDensity(const SurfaceMesh& surface, const std::vector<Vec3
   areaRatios(surface, surfaceArea, sphericalArea, 4.0 * Pi / surfaceTotal, perTriangle, perPoint);
 }
 
+//------------------------------------------------------------------------------
+double rangeOf(const std::vector<double>& density)
+{
+  const auto range = std::minmax_element(density.begin(), density.end());
+  return range.first == density.end() ? 1.0 : *range.second / *range.first;
+}
+
 } // namespace otparam

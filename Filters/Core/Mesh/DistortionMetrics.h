@@ -47,6 +47,15 @@ DistortionFigures measureSphereDistortion(
 void computeSphereAreaDensity(const SurfaceMesh& surface, const std::vector<Vec3>& sphere,
   std::vector<double>& perTriangle, std::vector<double>& perPoint);
 
+// Beyond this range (largest over smallest) of a map's area density, the map crowds part of the
+// surface (a long protrusion, where the density grows like exp(2 L / r)) past what one transport
+// resolves (the pipeline transports in stages), and a fold there is double precision's, not a
+// coarse mesh's.
+constexpr double CrowdedDensityRange = 1e12;
+
+// The largest over the smallest of a density's values (1 for none).
+double rangeOf(const std::vector<double>& density);
+
 } // namespace otparam
 
 #endif

@@ -4,6 +4,7 @@
 
 #include "Common/Memory.h"
 #include "Common/SphericalGeometry.h"
+#include "Mesh/DistortionMetrics.h"
 #include "Mesh/Folds.h"
 #include "Mesh/HoleFilling.h"
 #include "Transport/PlanarSource.h"
@@ -145,8 +146,6 @@ void compose(const AreaPreservingOptions& options, AreaPreservingResult& run)
   }
 }
 
-constexpr double CrowdedDensityRange = 1e12;
-
 // Domain Automatic sends a surface whose holes are all small (SmallHoleFraction, DiskStages.h)
 // to the sphere, FillHoles closing them.
 
@@ -173,12 +172,6 @@ constexpr double NarrowStageDensityRange = 1e3;
 // ((1 + |c|) / (1 - |c|))^2, 361 at 0.9; beyond, the stage keeps its map (and loses the tip's
 // precision).
 constexpr double MaximumRecentring = 0.9;
-
-double rangeOf(const std::vector<double>& density)
-{
-  const auto range = std::minmax_element(density.begin(), density.end());
-  return range.first == density.end() ? 1.0 : *range.second / *range.first;
-}
 
 std::vector<double> clampedForStage(const std::vector<double>& density, double range)
 {
