@@ -398,10 +398,12 @@ std::string checkDiskTopology(const SurfaceMesh& mesh, std::vector<int>& boundar
   boundaryLoop.clear();
   SurfaceTopology topology;
   const std::string error = analyzeSurface(mesh, topology, reportedIds);
-  if (!error.empty())
-  {
-    return error;
-  }
+  return error.empty() ? diskTopologyError(topology, boundaryLoop) : error;
+}
+
+std::string diskTopologyError(SurfaceTopology& topology, std::vector<int>& boundaryLoop)
+{
+  boundaryLoop.clear();
   std::ostringstream msg;
   const long long euler = topology.eulerCharacteristic;
   const size_t loops = topology.boundaryLoops.size();
@@ -438,10 +440,11 @@ std::string checkSphereTopology(
 {
   SurfaceTopology topology;
   const std::string error = analyzeSurface(mesh, topology, reportedIds);
-  if (!error.empty())
-  {
-    return error;
-  }
+  return error.empty() ? sphereTopologyError(topology) : error;
+}
+
+std::string sphereTopologyError(const SurfaceTopology& topology)
+{
   std::ostringstream msg;
   const long long euler = topology.eulerCharacteristic;
   const size_t loops = topology.boundaryLoops.size();

@@ -61,11 +61,19 @@ std::string analyzeSurface(const SurfaceMesh& mesh, SurfaceTopology& topology,
 std::string checkDiskTopology(const SurfaceMesh& mesh, std::vector<int>& boundaryLoop,
   const std::vector<std::int64_t>* reportedIds = nullptr);
 
+// checkDiskTopology's judgement of a surface analyzeSurface has passed (its boundary loop
+// moved into `boundaryLoop`): a pipeline that analyzed its input once tells problems of the mesh
+// from problems of its topology.
+std::string diskTopologyError(SurfaceTopology& topology, std::vector<int>& boundaryLoop);
+
 // A closed surface of genus 0, the sphere's domain (sphere.md): what analyzeSurface checks,
 // connected, no boundary loop, Euler characteristic 2. Returns "" when it is one, else a
 // message that says what is wrong (the number of components, boundary loops or the genus).
 std::string checkSphereTopology(
   const SurfaceMesh& mesh, const std::vector<std::int64_t>* reportedIds = nullptr);
+
+// checkSphereTopology's judgement of a surface analyzeSurface has passed.
+std::string sphereTopologyError(const SurfaceTopology& topology);
 
 double triangleArea(const SurfaceMesh& mesh, const Triangle& t);
 

@@ -74,17 +74,13 @@ std::string normalizationVertices(const TriangleSoup& soup, const ConformalStage
   return msg.str();
 }
 
-// The stage's surface made a disk: checked, and with FillHoles its extra boundary loops
-// closed; "" or what is wrong with the input.
-std::string makeDisk(const ConformalStageOptions& options, ConformalStage& stage)
+// The stage's surface, analyzed into `topology`, made a disk: checked, and with FillHoles its
+// extra boundary loops closed; "" or what is wrong with its topology.
+std::string makeDisk(
+  const ConformalStageOptions& options, SurfaceTopology& topology, ConformalStage& stage)
 {
   CompactedMesh& surface = stage.surface;
-  SurfaceTopology topology;
-  std::string error = analyzeSurface(surface.mesh, topology, &surface.originalPointIds);
-  if (!error.empty())
-  {
-    return error;
-  }
+  std::string error;
   const long long loops = static_cast<long long>(topology.boundaryLoops.size());
   const long long genus = (2 - topology.eulerCharacteristic - loops) / 2;
   if (loops > 1 && topology.components == 1)
@@ -112,7 +108,7 @@ std::string makeDisk(const ConformalStageOptions& options, ConformalStage& stage
     error = checkDiskTopology(surface.mesh, stage.boundaryLoop, &surface.originalPointIds);
     return error.empty() ? error : "closing its holes gave a surface that is not a disk: " + error;
   }
-  return checkDiskTopology(surface.mesh, stage.boundaryLoop, &surface.originalPointIds);
+  return diskTopologyError(topology, stage.boundaryLoop);
 }
 } // namespace
 
@@ -137,13 +133,15 @@ ConformalStage runConformalStage(const TriangleSoup& soup, const ConformalStageO
   {
     return stage;
   }
-  std::string error = compactMesh(soup.points, soup.triangles, stage.surface);
+  SurfaceTopology topology;
+  status.error = analyzeInput(soup, stage.surface, topology);
   stage.inputPoints = stage.surface.mesh.points.size();
   stage.inputTriangles = stage.surface.mesh.triangles.size();
-  if (error.empty())
+  if (!status.error.empty())
   {
-    error = makeDisk(options, stage);
+    return stage;
   }
+  const std::string error = makeDisk(options, topology, stage);
   if (!error.empty())
   {
     status.error = "The input is not a disk-like triangle surface: " + error + ".";

@@ -1,17 +1,34 @@
-// The input's own part of a conformal stage whose surface was closed by a hole fill, for
-// either domain (keepInputPart in DiskStages.h and SphereStages.h): the input's points and
-// triangles come first, the fill after them.
+// What the conformal stages of both domains do alike with their input: its checks of the mesh
+// itself, and its own part once its surface was closed by a hole fill (keepInputPart in
+// DiskStages.h and SphereStages.h): the input's points and triangles come first, the fill after
+// them.
 #ifndef OTPARAM_PIPELINE_INPUTPART_H
 #define OTPARAM_PIPELINE_INPUTPART_H
 
 #include "Mesh/HoleFilling.h"
+#include "Mesh/SurfaceMesh.h"
 
 #include <algorithm>
+#include <string>
 #include <utility>
 #include <vector>
 
 namespace otparam
 {
+
+// The input compacted into `compacted` and analyzed into `topology` once, for either domain:
+// "" or what is wrong with the mesh itself (ids, coordinates, degenerate triangles, edges),
+// which no domain could take; each domain judges the topology after this.
+inline std::string analyzeInput(
+  const TriangleSoup& soup, CompactedMesh& compacted, SurfaceTopology& topology)
+{
+  std::string error = compactMesh(soup.points, soup.triangles, compacted);
+  if (error.empty())
+  {
+    error = analyzeSurface(compacted.mesh, topology, &compacted.originalPointIds);
+  }
+  return error.empty() ? error : "The input is not a valid triangle surface: " + error + ".";
+}
 
 // Takes a hole fill into the stage: the filled mesh as its surface (fill points have original
 // id -1), the fill's counts for the figures.

@@ -17,17 +17,15 @@ namespace
 // flat disk closed by its fill mapped with a mean |log area ratio| of 0.76.
 constexpr double LargestSphereHole = 0.1;
 
-// A connected genus-0 surface with boundary loops closed by filling every hole; "" or what
-// stops it. A closed surface is left as it is.
-std::string closeHoles(SphereConformalStage& stage)
+// A connected genus-0 surface, analyzed into `topology`, with boundary loops closed by filling
+// every hole; "" or what stops it. A closed surface is left as it is.
+std::string closeHoles(const SurfaceTopology& topology, SphereConformalStage& stage)
 {
   CompactedMesh& surface = stage.surface;
-  SurfaceTopology topology;
-  const std::string error = analyzeSurface(surface.mesh, topology, &surface.originalPointIds);
   const auto loops = static_cast<long long>(topology.boundaryLoops.size());
-  if (!error.empty() || loops == 0 || topology.components != 1)
+  if (loops == 0 || topology.components != 1)
   {
-    return error; // checkSphereTopology names the rest
+    return {}; // sphereTopologyError names the rest
   }
   std::ostringstream msg;
   msg << "the surface has " << loops << " boundary loop" << (loops > 1 ? "s" : "");
@@ -64,16 +62,21 @@ SphereConformalStage runSphereConformalStage(
 {
   SphereConformalStage stage;
   Status& status = stage.status;
-  std::string error = compactMesh(soup.points, soup.triangles, stage.surface);
+  SurfaceTopology topology;
+  status.error = analyzeInput(soup, stage.surface, topology);
   stage.inputPoints = stage.surface.mesh.points.size();
   stage.inputTriangles = stage.surface.mesh.triangles.size();
-  if (error.empty() && fillHoles)
+  if (!status.error.empty())
   {
-    error = closeHoles(stage);
+    return stage;
   }
+  std::string error = fillHoles ? closeHoles(topology, stage) : std::string();
   if (error.empty())
   {
-    error = checkSphereTopology(stage.surface.mesh, &stage.surface.originalPointIds);
+    // A filled surface is checked anew (its fill too must be a valid mesh).
+    error = stage.filledHoles > 0
+      ? checkSphereTopology(stage.surface.mesh, &stage.surface.originalPointIds)
+      : sphereTopologyError(topology);
   }
   if (!error.empty())
   {
