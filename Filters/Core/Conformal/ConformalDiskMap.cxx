@@ -911,43 +911,32 @@ ConformalDiskMapResult computeConformalDiskMap(const SurfaceMesh& mesh,
     return result;
   }
   result.foldedWithMeshLaplacian = foldedTriangles(mesh, result.uv);
-  std::int64_t folded = result.foldedWithMeshLaplacian;
   ConformalDiskMapOptions again = options;
   if (options.progress)
   {
     // Progress already reached 1: the other solves only check for an abort.
     again.progress = [&options](double) { return options.progress(1.0); };
   }
-  // The floored weights are kept only where they unfold everything, as on the sphere: a
-  // crowded finger's collapse is not theirs to mend.
-  for (const LaplacianWeights fallback :
-    { LaplacianWeights::IntrinsicDelaunay, LaplacianWeights::Floored })
-  {
-    if (folded == 0)
+  tryFallbackLaplacians(
+    result.foldedWithMeshLaplacian,
+    [&](LaplacianWeights weights)
+    { return computeWithLaplacian(mesh, boundaryLoop, again, weights); },
+    [&](const ConformalDiskMapResult& other) -> std::int64_t
+    { return other.status.error.empty() ? foldedTriangles(mesh, other.uv) : -1; },
+    [&](ConformalDiskMapResult&& other, LaplacianWeights weights)
     {
-      break;
-    }
-    ConformalDiskMapResult other = computeWithLaplacian(mesh, boundaryLoop, again, fallback);
-    const std::int64_t otherFolded =
-      other.status.error.empty() && !other.status.aborted ? foldedTriangles(mesh, other.uv) : -1;
-    const bool better = fallback == LaplacianWeights::Floored
-      ? otherFolded == 0
-      : 0 <= otherFolded && otherFolded < folded;
-    if (other.status.aborted || better)
-    {
-      other.intrinsicLaplacian = fallback == LaplacianWeights::IntrinsicDelaunay;
-      other.flooredWeights = fallback == LaplacianWeights::Floored;
+      other.intrinsicLaplacian = weights == LaplacianWeights::IntrinsicDelaunay;
+      other.flooredWeights = weights == LaplacianWeights::Floored;
       other.foldedWithMeshLaplacian = result.foldedWithMeshLaplacian;
       other.secondsFactorization += result.secondsFactorization;
       other.secondsIterations += result.secondsIterations;
       result = std::move(other);
-      folded = otherFolded;
-      if (result.status.aborted)
-      {
-        break;
-      }
-    }
-  }
+    },
+    [&](const ConformalDiskMapResult& other)
+    {
+      result.secondsFactorization += other.secondsFactorization;
+      result.secondsIterations += other.secondsIterations;
+    });
   return result;
 }
 

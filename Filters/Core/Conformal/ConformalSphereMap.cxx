@@ -809,36 +809,27 @@ ConformalSphereMapResult computeConformalSphereMap(
     // Progress already reached 1: the other solves only check for an abort.
     again.progress = [&options](double) { return options.progress(1.0); };
   }
-  for (const Weights fallback : { Weights::IntrinsicDelaunay, Weights::Floored })
-  {
-    if (result.flippedTriangles == 0)
+  tryFallbackLaplacians(
+    result.flippedTriangles,
+    [&](Weights weights) { return computeWithLaplacian(mesh, again, weights); },
+    [](const ConformalSphereMapResult& other) -> std::int64_t
+    { return other.status.error.empty() ? other.flippedTriangles : -1; },
+    [&](ConformalSphereMapResult&& other, Weights weights)
     {
-      return result;
-    }
-    ConformalSphereMapResult other = computeWithLaplacian(mesh, again, fallback);
-    // The floored weights are kept only where they unfold everything: on a crowded surface
-    // (a closed finger 54 radii long) they fold fewer triangles than the intrinsic Laplacian
-    // but leave a start its stages map worse (mean |log area ratio| 0.034 -> 0.047).
-    const bool better = fallback == Weights::Floored
-      ? other.flippedTriangles == 0
-      : other.flippedTriangles < result.flippedTriangles;
-    if (other.status.aborted || (other.status.error.empty() && better))
-    {
-      other.intrinsicLaplacian = fallback == Weights::IntrinsicDelaunay;
-      other.flooredWeights = fallback == Weights::Floored;
+      other.intrinsicLaplacian = weights == Weights::IntrinsicDelaunay;
+      other.flooredWeights = weights == Weights::Floored;
       other.flippedWithMeshLaplacian = result.flippedWithMeshLaplacian;
       other.secondsFactorization += result.secondsFactorization;
       other.secondsSolve += result.secondsSolve;
       other.secondsBalance += result.secondsBalance;
       result = std::move(other);
-    }
-    else
+    },
+    [&](const ConformalSphereMapResult& other)
     {
       result.secondsFactorization += other.secondsFactorization;
       result.secondsSolve += other.secondsSolve;
       result.secondsBalance += other.secondsBalance;
-    }
-  }
+    });
   if (result.status.ok() && result.flippedTriangles > 0)
   {
     ConformalSphereMapResult lifted = throughTheDisk(mesh, again, result.punctureTriangle);
