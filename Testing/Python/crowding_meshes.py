@@ -56,10 +56,11 @@ def finger(length_over_radius, rho=0.2, n=24, closed=False):
     return make_domain(points, triangles)
 
 
-def square_fingers(lengths, n=24):
+def square_fingers(lengths, n=24, closed=False):
     """An n x n grid of unit cells with, per finger, a 2 x 2-cell hole whose 8-point loop is
     extruded into a square tube of that many cells (one ring per cell), capped by a point:
-    coarser tubes than finger()'s, several on one disk."""
+    coarser tubes than finger()'s, several on one disk. `closed`: the grid's rim joined to an
+    apex 4 above its centre, a closed surface with the fingers as limbs."""
     index, points, triangles = {}, [], []
 
     def point(x, y, z=0.0):
@@ -87,6 +88,12 @@ def square_fingers(lengths, n=24):
             previous = ring
         tip = point(cx, cy, -length - 1)
         triangles += [(previous[(m + 1) % 8], tip, previous[m]) for m in range(8)]
+    if closed:
+        rim = ([(i, 0) for i in range(n)] + [(n, j) for j in range(n)]
+               + [(i, n) for i in range(n, 0, -1)] + [(0, j) for j in range(n, 0, -1)])
+        rim = [point(x, y) for x, y in rim]
+        apex = point(n / 2, n / 2, 4.0)
+        triangles += [(rim[(k + 1) % len(rim)], rim[k], apex) for k in range(len(rim))]
     return make_domain(points, triangles)
 
 
