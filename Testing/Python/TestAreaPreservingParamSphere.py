@@ -7,7 +7,8 @@ the sphere too (filled, then the fill dropped). Bad domains: an open surface wit
 (a hole of half the surface), a closed one with Domain Disk, a torus (genus named), two spheres (components
 named), Domain 7; each one error, empty outputs, the input untouched. Coarse sharp corners: pyramids over
 a grid, VTK's capped cone and cylinder at resolution 24 (fans of long thin triangles) map with
-no flip; the cone at resolution 60 maps with a warning saying to subdivide it."""
+no flip; the cone at resolution 60, whose untangling leaves flips, is corrected from its
+conformal map, with a warning saying to subdivide it."""
 
 import math
 
@@ -204,18 +205,23 @@ check_sphere_map("VTK's cone, resolution 24", cone(24), 0.005)
 check_sphere_map("VTK's capped cylinder, resolution 24", cylinder(24), 0.005)
 check_sphere_map("VTK's cone, resolution 24, subdivided once", cone(24, 1), 0.01)
 
-# VTK's cone at resolution 60 (61 points): 10 triangles stay flipped, and the warning gives the
-# figure and says to subdivide.
+# VTK's cone at resolution 60 (61 points): the untangling leaves 10 triangles flipped, so the
+# correction starts over from the conformal map (until then: a map with 10 flips and mean |log
+# area ratio| 49); a warning says so and to subdivide for the transport's map.
 f = vtkAreaPreservingParam()
 f.SetInputData(cone(60))
 errors = MessageRecorder(f)
 warnings = MessageRecorder(f, vtkCommand.WarningEvent)
 f.Update()
-check(not errors.messages and f.GetOutput().GetNumberOfPoints() == 61
-      and "too coarse for its shape (61 points" in warnings.text()
+out = f.GetOutput()
+check(not errors.messages and out.GetNumberOfPoints() == 61
+      and field_value(out, "FlippedTriangles") == 0
+      and field_value(out, "MeanAbsLogAreaRatio") <= 0.1
+      and "conformal map corrected towards the surface's areas" in warnings.text()
+      and "coarse for its shape (61 points" in warnings.text()
       and "subdivide" in warnings.text(),
-      f"VTK's cone, resolution 60: a warning says the mesh is too coarse ({errors.text()}"
-      f"{warnings.text()})")
+      f"VTK's cone, resolution 60: no flip, and a warning says the map was corrected from the "
+      f"conformal map and to subdivide ({errors.text()}{warnings.text()})")
 check_sphere_map("VTK's cone, resolution 24, subdivided twice", cone(24, 2), 0.08)
 
 # VTK's superquadric triangulated and cleaned as a user would: the clean leaves the triangles it

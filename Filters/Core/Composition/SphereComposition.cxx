@@ -503,6 +503,13 @@ SphereCompositionResult composeOnSphere(const SurfaceMesh& surface,
     return result;
   }
 
+  const std::size_t stillFlipped = flippedOnSphere(surface, result.sphere).size();
+  if (stillFlipped > 0 && options.correctAreas && options.startOverWhereTangled &&
+    flippedOnSphere(surface, conformal).empty())
+  {
+    result.flippedBeforeStartingOver = static_cast<std::int64_t>(stillFlipped);
+    result.sphere = conformal;
+  }
   t0 = Clock::now();
   // Only an untangled map is corrected: the correction keeps every triangle positive.
   if (options.correctAreas && flippedOnSphere(surface, result.sphere).empty() &&

@@ -14,7 +14,9 @@
 // 3. Area correction (optional, on by default), as on the disk (AreaCorrection.h) with
 //    spherical triangle areas and steps in each vertex's tangent plane: the interpolation
 //    between samples cannot follow the mesh-scale noise of the conformal factor (spot, brain:
-//    mean |log area ratio| 0.06 at 5000 samples, 0.03 at 20000).
+//    mean |log area ratio| 0.06 at 5000 samples, 0.03 at 20000). Where the untangling leaves
+//    triangles flipped and the start map has none, the correction starts from the start map
+//    instead (CompositionOptions::startOverWhereTangled).
 #ifndef OTPARAM_COMPOSITION_SPHERECOMPOSITION_H
 #define OTPARAM_COMPOSITION_SPHERECOMPOSITION_H
 
@@ -36,6 +38,9 @@ struct SphereCompositionResult
   std::vector<Vec3> interpolated;             // after step 1 only
   std::int64_t flippedAfterInterpolation = 0; // det(a, b, c) <= 0 after step 1
   std::int64_t untangledVertices = 0;
+  // Triangles the untangling left flipped where the correction then started over from the start
+  // map (CompositionOptions::startOverWhereTangled); 0 otherwise.
+  std::int64_t flippedBeforeStartingOver = 0;
   std::int64_t flippedTriangles = 0; // after everything (0 unless untangling failed)
   int correctionSweeps = 0;
   double meanAbsLogAreaRatioInterpolated = 0.0; // after steps 1-2 (untangled, not corrected)

@@ -427,6 +427,7 @@ struct SphereStaging
   {
     CompositionOptions stageOptions = options;
     stageOptions.untangleWideStars = false;
+    stageOptions.startOverWhereTangled = false;
     return composeOnSphere(run.conformal.surface.mesh, run.startSphere, transport.diracs,
       diracTriangulation(sampling, transport, diracs.size()), transport.result.centroids,
       stageOptions);
@@ -908,6 +909,29 @@ void composeOnTheSphere(const AreaPreservingOptions& options, SphereParameteriza
     SphereCompositionResult& composition = run.composition;
     keepInputPart(conformal, { &composition.sphere, &composition.interpolated });
     run.figures = measureSphereDistortion(conformal.surface.mesh, composition.sphere);
+    if (composition.flippedBeforeStartingOver > 0)
+    {
+      std::ostringstream msg;
+      msg << composition.flippedBeforeStartingOver
+          << " triangle(s) stayed flipped after the composition's untangling, so the map "
+             "delivered is the "
+          << (run.transportStages > 0 ? "staged transports' map" : "conformal map")
+          << " corrected towards the surface's areas (no flip, mean |log area ratio| "
+          << run.figures.meanAbsLogAreaRatio << "), not the transport's map. ";
+      if (run.transportStages > 0)
+      {
+        msg << "The conformal map crowds part of the surface (a protrusion such as a finger, a "
+               "limb or a tail, too long for its width): cut the surface open closer to the "
+               "protrusion, or map its parts separately, for the transport's map.";
+      }
+      else
+      {
+        msg << "The mesh is coarse for its shape (" << conformal.surface.mesh.points.size()
+            << " points; sharp corners, fans of long thin triangles): subdivide it (e.g. a "
+               "linear or Loop subdivision) for the transport's map.";
+      }
+      run.status.warnings.push_back(msg.str());
+    }
   }
   catch (const std::exception& e)
   {
