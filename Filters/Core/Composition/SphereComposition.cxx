@@ -449,6 +449,34 @@ bool correctOnSphere(const SurfaceMesh& surface, const composition::VertexStars&
   }
   return true;
 }
+
+// Where the untangling left triangles flipped and the start map has none, the map starts over
+// from the start map (CompositionOptions::startOverWhereTangled). Returns the options its
+// correction runs with: started over, it has the whole way from the start map's areas to go
+// (the conformal map's: a mean |log area ratio| of 0.5-5 on the meshes that need it), not a
+// polish, so it is the thorough correction, until a sweep gains less than 0.01%, with up to ten
+// times the sweeps while they are cheap (2e7 vertex moves in all). VTK's cone at resolution 60 /
+// 200, cylinder at 200, a closed grid with four 40-cell limbs: 0.054 / 1.48 / 2.29 / 0.128 with
+// the default correction, 0.0011 / 0.15 / 0.12 / 0.015 so (549-1122 sweeps).
+CompositionOptions startOverWhereTangled(const SurfaceMesh& surface, const std::vector<Vec3>& start,
+  const CompositionOptions& options, SphereCompositionResult& result)
+{
+  CompositionOptions correction = options;
+  const std::size_t stillFlipped = flippedOnSphere(surface, result.sphere).size();
+  if (stillFlipped == 0 || !options.correctAreas || !options.startOverWhereTangled ||
+    !flippedOnSphere(surface, start).empty())
+  {
+    return correction;
+  }
+  result.flippedBeforeStartingOver = static_cast<std::int64_t>(stillFlipped);
+  result.sphere = start;
+  makeCorrectionThorough(correction);
+  correction.correctionRelativeDecrease = 1e-4;
+  const double affordable = 2e7 / static_cast<double>(surface.points.size());
+  correction.maximumCorrectionSweeps = std::max(options.maximumCorrectionSweeps,
+    static_cast<int>(std::min(10.0 * options.maximumCorrectionSweeps, affordable)));
+  return correction;
+}
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -503,30 +531,9 @@ SphereCompositionResult composeOnSphere(const SurfaceMesh& surface,
     return result;
   }
 
-  const std::size_t stillFlipped = flippedOnSphere(surface, result.sphere).size();
-  if (stillFlipped > 0 && options.correctAreas && options.startOverWhereTangled &&
-    flippedOnSphere(surface, conformal).empty())
-  {
-    result.flippedBeforeStartingOver = static_cast<std::int64_t>(stillFlipped);
-    result.sphere = conformal;
-  }
+  const CompositionOptions correction = startOverWhereTangled(surface, conformal, options, result);
   t0 = Clock::now();
   // Only an untangled map is corrected: the correction keeps every triangle positive.
-  CompositionOptions correction = options;
-  if (result.flippedBeforeStartingOver > 0)
-  {
-    // Started over, the correction has the whole way from the start map's areas to go (the
-    // conformal map's: a mean |log area ratio| of 0.5-5 on the meshes that need it), not a
-    // polish: the thorough correction, until a sweep gains less than 0.01%, with up to ten times
-    // the sweeps while they are cheap (2e7 vertex moves in all). VTK's cone at resolution 60 /
-    // 200, cylinder at 200, a closed grid with four 40-cell limbs: 0.054 / 1.48 / 2.29 / 0.128
-    // with the default correction, 0.0011 / 0.15 / 0.12 / 0.015 so (549-1122 sweeps).
-    makeCorrectionThorough(correction);
-    correction.correctionRelativeDecrease = 1e-4;
-    const double affordable = 2e7 / static_cast<double>(surface.points.size());
-    correction.maximumCorrectionSweeps = std::max(options.maximumCorrectionSweeps,
-      static_cast<int>(std::min(10.0 * options.maximumCorrectionSweeps, affordable)));
-  }
   if (options.correctAreas && flippedOnSphere(surface, result.sphere).empty() &&
     !correctOnSphere(surface, stars, correction, report, result))
   {
