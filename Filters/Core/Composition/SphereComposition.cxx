@@ -459,10 +459,9 @@ bool correctOnSphere(const SurfaceMesh& surface, const composition::VertexStars&
 // 200, cylinder at 200, a closed grid with four 40-cell limbs: 0.054 / 1.48 / 2.29 / 0.128 with
 // the default correction, 0.0011 / 0.15 / 0.12 / 0.015 so (549-1122 sweeps).
 CompositionOptions startOverWhereTangled(const SurfaceMesh& surface, const std::vector<Vec3>& start,
-  const CompositionOptions& options, SphereCompositionResult& result)
+  std::size_t stillFlipped, const CompositionOptions& options, SphereCompositionResult& result)
 {
   CompositionOptions correction = options;
-  const std::size_t stillFlipped = flippedOnSphere(surface, result.sphere).size();
   if (stillFlipped == 0 || !options.correctAreas || !options.startOverWhereTangled ||
     !flippedOnSphere(surface, start).empty())
   {
@@ -531,10 +530,13 @@ SphereCompositionResult composeOnSphere(const SurfaceMesh& surface,
     return result;
   }
 
-  const CompositionOptions correction = startOverWhereTangled(surface, conformal, options, result);
+  const std::size_t stillFlipped = flippedOnSphere(surface, result.sphere).size();
+  const CompositionOptions correction =
+    startOverWhereTangled(surface, conformal, stillFlipped, options, result);
   t0 = Clock::now();
   // Only an untangled map is corrected: the correction keeps every triangle positive.
-  if (options.correctAreas && flippedOnSphere(surface, result.sphere).empty() &&
+  const bool untangled = stillFlipped == 0 || result.flippedBeforeStartingOver > 0;
+  if (options.correctAreas && untangled &&
     !correctOnSphere(surface, stars, correction, report, result))
   {
     result.sphere.clear(); // an aborted run has no map

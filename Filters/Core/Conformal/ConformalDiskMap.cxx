@@ -894,6 +894,17 @@ ConformalDiskMapResult computeWithLaplacian(const SurfaceMesh& mesh,
 }
 } // namespace
 
+namespace
+{
+// The seconds of the map `from` added to those of `into` (a fallback dropped, or the one kept
+// counting the maps tried before it).
+void addSeconds(const ConformalDiskMapResult& from, ConformalDiskMapResult& into)
+{
+  into.secondsFactorization += from.secondsFactorization;
+  into.secondsIterations += from.secondsIterations;
+}
+} // namespace
+
 // The mesh's own cotangent Laplacian gives the most faithful angles on the mesh's triangles,
 // but its weights go negative across obtuse triangles, and where they do the harmonic map can
 // fold (a height field with steep bumps: 200 flipped triangles). The intrinsic Delaunay
@@ -928,15 +939,10 @@ ConformalDiskMapResult computeConformalDiskMap(const SurfaceMesh& mesh,
       other.intrinsicLaplacian = weights == LaplacianWeights::IntrinsicDelaunay;
       other.flooredWeights = weights == LaplacianWeights::Floored;
       other.foldedWithMeshLaplacian = result.foldedWithMeshLaplacian;
-      other.secondsFactorization += result.secondsFactorization;
-      other.secondsIterations += result.secondsIterations;
+      addSeconds(result, other);
       result = std::move(other);
     },
-    [&](const ConformalDiskMapResult& other)
-    {
-      result.secondsFactorization += other.secondsFactorization;
-      result.secondsIterations += other.secondsIterations;
-    });
+    [&](const ConformalDiskMapResult& other) { addSeconds(other, result); });
   return result;
 }
 

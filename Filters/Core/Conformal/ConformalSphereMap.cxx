@@ -805,6 +805,18 @@ bool betterLift(const SurfaceMesh& mesh, const ConformalSphereMapResult& lifted,
 }
 } // namespace
 
+namespace
+{
+// The seconds of the map `from` added to those of `into`: a map tried and dropped, or the map
+// kept counts the maps tried before it.
+void addSeconds(const ConformalSphereMapResult& from, ConformalSphereMapResult& into)
+{
+  into.secondsFactorization += from.secondsFactorization;
+  into.secondsSolve += from.secondsSolve;
+  into.secondsBalance += from.secondsBalance;
+}
+} // namespace
+
 // As in the disk map: the mesh's own cotangent Laplacian is the most faithful to its triangles
 // but can fold across obtuse ones (negative weights); the intrinsic Delaunay Laplacian cannot
 // fold its own triangulation, so it is the first fallback, kept when it flips fewer of the
@@ -844,17 +856,10 @@ ConformalSphereMapResult computeConformalSphereMap(
       other.intrinsicLaplacian = weights == Weights::IntrinsicDelaunay;
       other.flooredWeights = weights == Weights::Floored;
       other.flippedWithMeshLaplacian = result.flippedWithMeshLaplacian;
-      other.secondsFactorization += result.secondsFactorization;
-      other.secondsSolve += result.secondsSolve;
-      other.secondsBalance += result.secondsBalance;
+      addSeconds(result, other);
       result = std::move(other);
     },
-    [&](const ConformalSphereMapResult& other)
-    {
-      result.secondsFactorization += other.secondsFactorization;
-      result.secondsSolve += other.secondsSolve;
-      result.secondsBalance += other.secondsBalance;
-    });
+    [&](const ConformalSphereMapResult& other) { addSeconds(other, result); });
   if (result.status.ok() && result.flippedTriangles > 0)
   {
     ConformalSphereMapResult lifted = throughTheDisk(mesh, again, result.punctureTriangle);
@@ -862,9 +867,7 @@ ConformalSphereMapResult computeConformalSphereMap(
     {
       lifted.liftedFromTheDisk = true;
       lifted.flippedWithMeshLaplacian = result.flippedWithMeshLaplacian;
-      lifted.secondsFactorization += result.secondsFactorization;
-      lifted.secondsSolve += result.secondsSolve;
-      lifted.secondsBalance += result.secondsBalance;
+      addSeconds(result, lifted);
       return lifted;
     }
   }
