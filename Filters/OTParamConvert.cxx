@@ -90,8 +90,14 @@ std::string ReadTriangleSoup(
 }
 
 //------------------------------------------------------------------------------
-std::string TrianglesOnlyError(vtkPolyData* input, const char* what)
+std::string ReadTriangleDomain(vtkPolyData* input, const char* what, otparam::TriangleSoup& soup)
 {
+  std::string ignored;
+  const std::string error = ReadTriangleSoup(input, what, soup, ignored);
+  if (!error.empty() || ignored.empty())
+  {
+    return error;
+  }
   std::ostringstream msg;
   msg << "The " << what << " must be made of triangles only, but it has "
       << input->GetNumberOfVerts() << " vertex cells, " << input->GetNumberOfLines()

@@ -37,9 +37,10 @@ namespace otparam_vtk
 std::string ReadTriangleSoup(
   vtkPolyData* input, const char* what, otparam::TriangleSoup& soup, std::string& ignored);
 
-// For inputs that are domains, not surfaces (the sampler's, the transport's source): their
-// cell arrays are per triangle, so vertex and line cells are an error, which this names.
-std::string TrianglesOnlyError(vtkPolyData* input, const char* what);
+// ReadTriangleSoup for inputs that are domains, not surfaces (the sampler's, the transport's
+// source): their cell arrays are per triangle, so vertex and line cells are an error, which the
+// message names.
+std::string ReadTriangleDomain(vtkPolyData* input, const char* what, otparam::TriangleSoup& soup);
 
 // The points `ids` of a surface, which must lie in the plane z = 0 (up to 1e-12 of the
 // domain's size) and be finite; messages name the input's point ids.

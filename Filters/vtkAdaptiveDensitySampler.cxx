@@ -249,12 +249,7 @@ struct vtkAdaptiveDensitySampler::Input
 std::string vtkAdaptiveDensitySampler::ReadInput(vtkPolyData* input, Input& read)
 {
   otparam::TriangleSoup soup;
-  std::string ignored;
-  std::string error = ReadTriangleSoup(input, "input domain", soup, ignored);
-  if (error.empty() && !ignored.empty())
-  {
-    error = TrianglesOnlyError(input, "input domain");
-  }
+  std::string error = ReadTriangleDomain(input, "input domain", soup);
   if (error.empty())
   {
     error = otparam::compactMesh(soup.points, soup.triangles, read.domain);

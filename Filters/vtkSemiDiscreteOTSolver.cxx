@@ -65,12 +65,7 @@ std::string ReadSource(vtkPolyData* domain, std::unique_ptr<otparam::SourceMeasu
   }
   const char* what = "source domain (port 1)";
   otparam::TriangleSoup soup;
-  std::string ignored;
-  std::string error = ReadTriangleSoup(domain, what, soup, ignored);
-  if (error.empty() && !ignored.empty())
-  {
-    error = TrianglesOnlyError(domain, what);
-  }
+  std::string error = ReadTriangleDomain(domain, what, soup);
   std::vector<otparam::Vec2> points;
   std::vector<std::int64_t> ids(soup.points.size());
   std::iota(ids.begin(), ids.end(), 0);
