@@ -701,10 +701,7 @@ ConformalSphereMapResult computeWithLaplacian(
   }
   return result;
 }
-} // namespace
 
-namespace
-{
 // The last fallback, which cannot fold the surface's triangles but its puncture's: the surface
 // less its puncture triangle is a disk whose conformal map (ConformalDiskMap, with floored
 // weights where both cotangent Laplacians fold: Tutte) folds none of them; lifted by inverse
@@ -779,10 +776,7 @@ std::string foldWarning(const SurfaceMesh& mesh, const ConformalSphereMapResult&
   }
   return msg.str();
 }
-} // namespace
 
-namespace
-{
 // The lifted map is kept where it flips nothing, or where it flips fewer triangles than `folded`
 // on a surface that map does not crowd (area density range at most CrowdedDensityRange): the
 // pipeline's untangling then has fewer to free (VTK's cone at resolution 60 subdivided once: 69
@@ -803,10 +797,7 @@ bool betterLift(const SurfaceMesh& mesh, const ConformalSphereMapResult& lifted,
   computeSphereAreaDensity(mesh, folded.sphere, density, perPoint);
   return rangeOf(density) <= CrowdedDensityRange;
 }
-} // namespace
 
-namespace
-{
 // The seconds of the map `from` added to those of `into`: a map tried and dropped, or the map
 // kept counts the maps tried before it.
 void addSeconds(const ConformalSphereMapResult& from, ConformalSphereMapResult& into)
@@ -820,9 +811,10 @@ void addSeconds(const ConformalSphereMapResult& from, ConformalSphereMapResult& 
 // As in the disk map: the mesh's own cotangent Laplacian is the most faithful to its triangles
 // but can fold across obtuse ones (negative weights); the intrinsic Delaunay Laplacian cannot
 // fold its own triangulation, so it is the first fallback, kept when it flips fewer of the
-// mesh's triangles. Then the floored weights and last the disk map lifted (throughTheDisk),
-// each kept only if nothing flips (coarse sharp corners; a crowded surface's folds are its
-// stages' to heal).
+// mesh's triangles. Then the floored weights, kept only if nothing flips, and last the disk map
+// lifted (throughTheDisk), kept if nothing flips or, on a surface the map does not crowd, if
+// fewer triangles flip (betterLift): coarse sharp corners; a crowded surface's folds are its
+// stages' to heal.
 ConformalSphereMapResult computeConformalSphereMap(
   const SurfaceMesh& mesh, const ConformalSphereMapOptions& options)
 {
