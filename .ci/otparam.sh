@@ -38,6 +38,21 @@ packages=(
 
 log() { printf '\n==== %s\n' "$*"; }
 
+# OpenBLAS's kernels as the otparam command chooses them (CommandLine/otparam.in), unless set:
+# Debian 12's OpenBLAS 0.3.21 runs its generic SSE3 kernels on processors newer than itself.
+cpu_flags=" $(grep -m1 '^flags' /proc/cpuinfo 2> /dev/null || true) "
+has_cpu_flags() {
+  local flag
+  for flag in "$@"; do [[ $cpu_flags == *" $flag "* ]] || return 1; done
+}
+if [ -z "${OPENBLAS_CORETYPE:-}" ]; then
+  if has_cpu_flags avx512f avx512cd avx512bw avx512dq avx512vl; then
+    export OPENBLAS_CORETYPE=SkylakeX
+  elif has_cpu_flags avx2 fma; then
+    export OPENBLAS_CORETYPE=Haswell
+  fi
+fi
+
 as_root() {
   if [ "$(id -u)" -eq 0 ]; then "$@"; else sudo "$@"; fi
 }
