@@ -305,21 +305,15 @@ int vtkAreaPreservingParam::Execute(
         << ".";
     error = msg.str();
   }
-  otparam::TriangleSoup soup;
-  std::string ignored;
-  if (error.empty())
-  {
-    error = ReadTriangleSoup(input, "input surface", soup, ignored);
-    error = error.empty() ? error : "conformal map: " + error;
-  }
   if (!error.empty())
   {
     vtkErrorMacro(<< error);
     return 0;
   }
-  if (!ignored.empty())
+  otparam::TriangleSoup soup;
+  if (!this->ReadInputSurface(input, soup, "conformal map: "))
   {
-    vtkWarningMacro(<< ignored);
+    return 0;
   }
 
   const bool sphere = this->Domain == SPHERE ||

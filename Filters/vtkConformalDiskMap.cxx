@@ -54,21 +54,16 @@ int vtkConformalDiskMap::Execute(
   options.map.maximumNumberOfIterations = this->MaximumNumberOfIterations;
   options.map.progress = this->ProgressCallback();
   // Parameters first: a bad one is reported whatever the input.
-  std::string error = options.check();
-  otparam::TriangleSoup soup;
-  std::string ignored;
-  if (error.empty())
-  {
-    error = ReadTriangleSoup(input, "input surface", soup, ignored);
-  }
+  const std::string error = options.check();
   if (!error.empty())
   {
     vtkErrorMacro(<< error);
     return 0;
   }
-  if (!ignored.empty())
+  otparam::TriangleSoup soup;
+  if (!this->ReadInputSurface(input, soup))
   {
-    vtkWarningMacro(<< ignored);
+    return 0;
   }
   otparam::ConformalStage stage = otparam::runConformalStage(soup, options);
   otparam::warnAboutUnreferencedPoints(stage.surface.unreferencedPoints, false, stage.status);

@@ -55,16 +55,9 @@ int vtkConformalSphereMap::Execute(
   options.maximumBalanceIterations = this->MaximumBalanceIterations;
   options.progress = this->ProgressCallback();
   otparam::TriangleSoup soup;
-  std::string ignored;
-  const std::string error = ReadTriangleSoup(input, "input surface", soup, ignored);
-  if (!error.empty())
+  if (!this->ReadInputSurface(input, soup))
   {
-    vtkErrorMacro(<< error);
     return 0;
-  }
-  if (!ignored.empty())
-  {
-    vtkWarningMacro(<< ignored);
   }
   otparam::SphereConformalStage stage =
     otparam::runSphereConformalStage(soup, options, this->FillHoles);

@@ -6,6 +6,8 @@
 #include "vtkStreamingDemandDrivenPipeline.h"
 
 #include "Common/Status.h"
+#include "Mesh/SurfaceMesh.h"
+#include "OTParamConvert.h"
 #include "Pipeline/DiskStages.h"
 
 #include <exception>
@@ -104,6 +106,24 @@ bool vtkOTParamAlgorithm::ReportStatus(const otparam::Status& status, const char
   for (const std::string& warning : status.warnings)
   {
     vtkWarningMacro(<< prefix << warning);
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkOTParamAlgorithm::ReadInputSurface(
+  vtkPolyData* input, otparam::TriangleSoup& soup, const char* prefix)
+{
+  std::string ignored;
+  const std::string error = otparam_vtk::ReadTriangleSoup(input, "input surface", soup, ignored);
+  if (!error.empty())
+  {
+    vtkErrorMacro(<< prefix << error);
+    return false;
+  }
+  if (!ignored.empty())
+  {
+    vtkWarningMacro(<< ignored);
   }
   return true;
 }

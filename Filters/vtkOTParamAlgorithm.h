@@ -22,7 +22,9 @@ namespace otparam
 {
 struct OTOptions;
 struct Status;
+struct TriangleSoup;
 }
+class vtkPolyData;
 #endif
 
 class OTPARAMFILTERS_EXPORT vtkOTParamAlgorithm : public vtkPolyDataAlgorithm
@@ -60,6 +62,13 @@ protected:
    * `prefix`); true when the stage succeeded and was not aborted.
    */
   bool ReportStatus(const otparam::Status& status, const char* prefix = "");
+
+  /**
+   * The input surface's triangles (OTParamConvert's ReadTriangleSoup): what is wrong with it as
+   * vtkErrorMacro (prefixed by `prefix`), the cells it leaves out as vtkWarningMacro; false
+   * after an error.
+   */
+  bool ReadInputSurface(vtkPolyData* input, otparam::TriangleSoup& soup, const char* prefix = "");
 
   /**
    * A core progress callback: fraction f of the stage is reported as start + (end - start) f,
