@@ -344,18 +344,13 @@ private:
   };
 
   // Greedy colouring: vertices of one colour share no triangle, so they move in parallel with
-  // exactly the result of a sequential sweep in colour order. The sweeps work on a copy of the
-  // points numbered colour by colour (in the surface's order within a colour), each star
-  // entry holding its triangle's share: a parallel loop then reads its vertices' stars in
-  // storage order instead of gathering the shares and stars across the whole surface. The
-  // same bits; with the single region, hand_choi_53k's correction 0.42 -> 0.34 s
-  // (docs/performance.md).
-  void renumberByColour(const VertexStars& stars, const std::vector<double>& surfaceFraction,
-    const std::vector<char>& onBoundary)
+  // exactly the result of a sequential sweep in colour order. Returns each vertex's colour and
+  // counts each colour's vertices in `classSizes`.
+  static std::vector<int> greedyColours(
+    const VertexStars& stars, size_t n, std::vector<int>& classSizes)
   {
-    const size_t n = onBoundary.size();
     std::vector<int> colour(n, -1);
-    std::vector<int> classSizes;
+    classSizes.clear();
     for (size_t v = 0; v < n; ++v)
     {
       std::vector<char> taken;
@@ -380,6 +375,20 @@ private:
       classSizes.resize(std::max(classSizes.size(), static_cast<size_t>(c) + 1), 0);
       ++classSizes[c];
     }
+    return colour;
+  }
+
+  // The sweeps work on a copy of the points numbered colour by colour (in the surface's order
+  // within a colour), each star entry holding its triangle's share: a parallel loop then reads
+  // its vertices' stars in storage order instead of gathering the shares and stars across the
+  // whole surface. The same bits; with the single region, hand_choi_53k's correction 0.42 ->
+  // 0.34 s (docs/performance.md).
+  void renumberByColour(const VertexStars& stars, const std::vector<double>& surfaceFraction,
+    const std::vector<char>& onBoundary)
+  {
+    const size_t n = onBoundary.size();
+    std::vector<int> classSizes;
+    const std::vector<int> colour = greedyColours(stars, n, classSizes);
     this->ClassStarts.assign(classSizes.size() + 1, 0);
     std::partial_sum(classSizes.begin(), classSizes.end(), this->ClassStarts.begin() + 1);
     std::vector<int> next(this->ClassStarts.begin(), this->ClassStarts.end() - 1);
