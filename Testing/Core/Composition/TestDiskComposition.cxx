@@ -13,6 +13,10 @@
 #include <cstdio>
 #include <random>
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 using namespace otparam;
 
 namespace
@@ -230,6 +234,46 @@ TEST(AreaPreservingComposition, UntanglesFlipsAndCorrectsAreas)
   for (int v : loop)
   {
     EXPECT_NEAR(norm(result.uv[v]), 1.0, 1e-14) << v;
+  }
+}
+
+// The untangling and the correction's sweeps move vertices on both cores (colour by colour in
+// the sweeps): the map is the same bit for bit on one thread and on two.
+TEST(AreaPreservingComposition, SameBitsWithOneAndTwoThreads)
+{
+  const otparam::testing::PlanarMesh mesh = otparam::testing::makePlanarDisk(60);
+  const otparam::testing::PlanarMesh samples = otparam::testing::makePlanarDisk(15);
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> shake(-0.03, 0.03);
+  std::vector<Vec2> images = samples.points;
+  for (Vec2& p : images)
+  {
+    if (norm(p) < 0.95)
+    {
+      p = p + Vec2{ shake(random), shake(random) };
+    }
+  }
+  const SurfaceMesh surface = flatSurface(mesh);
+  const std::vector<int> loop = boundaryOf(surface);
+  std::vector<CompositionResult> runs;
+  for (int threads : { 2, 1 })
+  {
+#ifdef _OPENMP
+    omp_set_num_threads(threads);
+#endif
+    runs.push_back(composeWithInverseTransport(surface, mesh.points, loop, samples.points, images));
+  }
+#ifdef _OPENMP
+  omp_set_num_threads(omp_get_num_procs());
+#endif
+  ASSERT_EQ(runs[0].status.error, "");
+  EXPECT_GT(runs[0].correctionSweeps, 10);
+  EXPECT_EQ(runs[1].correctionSweeps, runs[0].correctionSweeps);
+  ASSERT_EQ(runs[1].uv.size(), runs[0].uv.size());
+  for (size_t v = 0; v < runs[0].uv.size(); ++v)
+  {
+    ASSERT_TRUE(runs[1].uv[v].x == runs[0].uv[v].x && runs[1].uv[v].y == runs[0].uv[v].y)
+      << "vertex " << v << " differs between 1 and 2 threads";
   }
 }
 
