@@ -135,17 +135,31 @@ public:
     std::fill(this->Active.begin(), this->Active.end(), 1);
   }
 
-  // Returns the number of vertices moved.
-  std::int64_t sweep(std::vector<Point>& uv)
+  // The sweeps move their own copy of the points (numbered colour by colour): `load` takes the
+  // caller's points, `store` gives them back. Copying them in and out at every sweep cost two
+  // passes over the points in scattered order, also in the polishing sweeps that move few.
+  void load(const std::vector<Point>& uv)
   {
-    // From the boundary alone: a sum over every triangle was ~7% of a sweep (a third of a
-    // polishing sweep) at 273k points.
-    this->TotalArea = Geometry::totalArea(uv, this->BoundaryLoop);
-    const size_t n = this->OriginalIndex.size();
-    for (size_t v = 0; v < n; ++v)
+    for (size_t v = 0; v < this->OriginalIndex.size(); ++v)
     {
       this->Points[v] = uv[this->OriginalIndex[v]];
     }
+  }
+  void store(std::vector<Point>& uv) const
+  {
+    for (size_t v = 0; v < this->OriginalIndex.size(); ++v)
+    {
+      uv[this->OriginalIndex[v]] = this->Points[v];
+    }
+  }
+
+  // One sweep over the loaded points. Returns the number of vertices moved.
+  std::int64_t sweep()
+  {
+    // From the boundary alone: a sum over every triangle was ~7% of a sweep (a third of a
+    // polishing sweep) at 273k points.
+    this->TotalArea = Geometry::totalArea(this->Points, this->BoundaryLoop);
+    const size_t n = this->OriginalIndex.size();
     std::vector<char> moved(n, 0);
     // One parallel region per sweep, not per colour: under OMP_WAIT_POLICY=passive each region
     // wakes the sleeping threads (hand_choi_53k: ~900 regions of 0.3 ms per correction).
@@ -176,7 +190,6 @@ public:
           this->Active[this->Entries[e].c] = 1;
         }
       }
-      uv[this->OriginalIndex[v]] = this->Points[v];
     }
     return movedCount;
   }
@@ -335,7 +348,7 @@ private:
     return false;
   }
 
-  const std::vector<int> BoundaryLoop; // a copy: the sphere's caller passes a temporary {}
+  std::vector<int> BoundaryLoop; // in the sweeps' numbering (the sphere's is empty)
   // A triangle of a vertex's star: its target share of the domain and the next two corners.
   struct StarEntry
   {
@@ -414,6 +427,10 @@ private:
       }
       this->Offsets[i + 1] = static_cast<int>(this->Entries.size());
     }
+    for (int& v : this->BoundaryLoop)
+    {
+      v = newIndex[v];
+    }
     this->Active.assign(n, 1);
     this->Points.resize(n);
   }
@@ -441,14 +458,16 @@ bool correctAreas(AreaCorrectionOn<Geometry>& correction,
   // The mean is measured every few sweeps only: it costs a logarithm per triangle.
   constexpr int SweepsPerCheck = 4;
   correction.setOverrelaxation(options.correctionOverrelaxation);
+  correction.load(points);
   for (int sweep = 0; sweep < options.maximumCorrectionSweeps; ++sweep)
   {
-    const std::int64_t moved = correction.sweep(points);
+    const std::int64_t moved = correction.sweep();
     ++sweeps;
     if (moved > 0 && (sweep + 1) % SweepsPerCheck != 0)
     {
       continue;
     }
+    correction.store(points);
     const double now = mean(points);
     const bool settled = moved == 0 ||
       meanAbsLogAreaRatio - now < SweepsPerCheck * options.correctionRelativeDecrease * now;
@@ -470,15 +489,17 @@ bool correctAreas(AreaCorrectionOn<Geometry>& correction,
   for (int sweep = 0; sweep < std::min(options.maximumCorrectionSweeps, PolishSweeps); ++sweep)
   {
     ++sweeps;
-    if (correction.sweep(points) == 0)
+    if (correction.sweep() == 0)
     {
       break;
     }
     if (!report(0.9))
     {
+      correction.store(points);
       return false;
     }
   }
+  correction.store(points);
   meanAbsLogAreaRatio = mean(points);
   return true;
 }
