@@ -394,8 +394,8 @@ private:
   // The sweeps work on a copy of the points numbered colour by colour (in the surface's order
   // within a colour), each star entry holding its triangle's share: a parallel loop then reads
   // its vertices' stars in storage order instead of gathering the shares and stars across the
-  // whole surface. The same bits; with the single region, hand_choi_53k's correction 0.42 ->
-  // 0.34 s (docs/performance.md).
+  // whole surface. The same bits; with the single region per sweep, hand_choi_53k's correction
+  // 0.39 -> 0.30 s on a quiet machine (docs/performance.md).
   void renumberByColour(const VertexStars& stars, const std::vector<double>& surfaceFraction,
     const std::vector<char>& onBoundary)
   {
