@@ -32,6 +32,22 @@ SurfaceMesh flatSurface(const otparam::testing::PlanarMesh& disk)
   return surface;
 }
 
+// Sample images moved at random by up to `amplitude` in each coordinate, except those on the
+// circle (|p| >= 0.95), which stay there.
+std::vector<Vec2> shakenInside(std::vector<Vec2> images, unsigned seed, double amplitude)
+{
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<double> shake(-amplitude, amplitude);
+  for (Vec2& p : images)
+  {
+    if (norm(p) < 0.95)
+    {
+      p = p + Vec2{ shake(random), shake(random) };
+    }
+  }
+  return images;
+}
+
 std::vector<int> boundaryOf(const SurfaceMesh& surface)
 {
   std::vector<int> loop;
@@ -198,16 +214,7 @@ TEST(AreaPreservingComposition, UntanglesFlipsAndCorrectsAreas)
   // untangle, areas far off to correct; the boundary must stay on the circle throughout.
   const otparam::testing::PlanarMesh mesh = otparam::testing::makePlanarDisk(20);
   const otparam::testing::PlanarMesh samples = otparam::testing::makePlanarDisk(9);
-  std::mt19937 random(7);
-  std::uniform_real_distribution<double> shake(-0.06, 0.06);
-  std::vector<Vec2> images = samples.points;
-  for (Vec2& p : images)
-  {
-    if (norm(p) < 0.95)
-    {
-      p = p + Vec2{ shake(random), shake(random) };
-    }
-  }
+  const std::vector<Vec2> images = shakenInside(samples.points, 7, 0.06);
   const SurfaceMesh surface = flatSurface(mesh);
   const std::vector<int> loop = boundaryOf(surface);
   const CompositionResult result =
@@ -243,16 +250,7 @@ TEST(AreaPreservingComposition, SameBitsWithOneAndTwoThreads)
 {
   const otparam::testing::PlanarMesh mesh = otparam::testing::makePlanarDisk(60);
   const otparam::testing::PlanarMesh samples = otparam::testing::makePlanarDisk(15);
-  std::mt19937 random(11);
-  std::uniform_real_distribution<double> shake(-0.03, 0.03);
-  std::vector<Vec2> images = samples.points;
-  for (Vec2& p : images)
-  {
-    if (norm(p) < 0.95)
-    {
-      p = p + Vec2{ shake(random), shake(random) };
-    }
-  }
+  const std::vector<Vec2> images = shakenInside(samples.points, 11, 0.03);
   const SurfaceMesh surface = flatSurface(mesh);
   const std::vector<int> loop = boundaryOf(surface);
   std::vector<CompositionResult> runs;
