@@ -10,7 +10,8 @@
 // applies K steps of Loop subdivision (CGAL) to each mesh first (the large-surface figures).
 //
 //   otparam_param_benchmark [--repeat R] [--samples N] [--correction-decrease F]
-//                           [--no-correction] [--subdivide K] [--progress-gaps]
+//                           [--thorough-correction] [--no-correction]
+//                           [--no-sample-scale-correction] [--subdivide K] [--progress-gaps]
 //                           [mesh ...]   (default: every shared mesh)
 #include "ForkedRun.h"
 #include "MeshFiles.h"
@@ -210,6 +211,8 @@ int main(int argc, char** argv)
       makeCorrectionThorough(options.composition);
     else if (!std::strcmp(argv[i], "--no-correction"))
       options.composition.correctAreas = false;
+    else if (!std::strcmp(argv[i], "--no-sample-scale-correction"))
+      options.composition.correctAtSampleScale = false;
     else if (!std::strcmp(argv[i], "--subdivide") && i + 1 < argc)
       subdivide = std::max(0, std::atoi(argv[++i]));
     else if (!std::strcmp(argv[i], "--progress-gaps"))
@@ -218,7 +221,8 @@ int main(int argc, char** argv)
     {
       std::fprintf(stderr,
         "unknown option %s\nusage: otparam_param_benchmark [--repeat R] [--samples N] "
-        "[--correction-decrease F] [--thorough-correction] [--no-correction] [--subdivide K] [--progress-gaps] "
+        "[--correction-decrease F] [--thorough-correction] [--no-correction] "
+        "[--no-sample-scale-correction] [--subdivide K] [--progress-gaps] "
         "[mesh ...]\n",
         argv[i]);
       return 2;

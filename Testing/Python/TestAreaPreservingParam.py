@@ -120,9 +120,11 @@ for name in MESHES:
               f"{name}: histogram {column} counts every triangle")
 
 
-# The thorough correction (gentler over-relaxation, about twice the sweeps) ends with both a
-# lower area and a lower angle distortion (measured on every shared mesh; face_choi_bff_17k
-# 0.0111 / 25.21 degrees -> 0.0097 / 24.54, ogre_face_20k 0.0082 / 23.11 -> 0.0065 / 22.26).
+# The thorough correction (gentler over-relaxation, about twice the sweeps) ends with a lower
+# area distortion and an angle distortion no more than a quarter degree above the default's
+# (since the sweeps at the samples' scale lowered the default's angle, 2026-11-28:
+# face_choi_bff_17k 0.0113 / 24.15 degrees -> 0.0096 / 24.22, ogre_face_20k 0.0076 / 22.45 ->
+# 0.0064 / 21.97).
 for name in ("face_choi_bff_17k.obj", "ogre_face_20k.obj"):
     param, errors, warnings = run(read_mesh(shared_mesh(name)), ThoroughAreaCorrection=True)
     out = param.GetOutput()
@@ -134,8 +136,8 @@ for name in ("face_choi_bff_17k.obj", "ogre_face_20k.obj"):
     check(not errors.messages and field_value(out, "FlippedTriangles") == 0,
           f"{name}: thorough correction, no error and no flip")
     check(default and area <= 0.95 * default["MeanAbsLogAreaRatio"]
-          and angle < default["MeanAngleDistortion"],
-          f"{name}: the thorough correction lowers both the area and the angle distortion")
+          and angle < default["MeanAngleDistortion"] + 0.25,
+          f"{name}: the thorough correction lowers the area distortion, the angle's stays")
 
 
 def ring_hemisphere(rings):

@@ -20,6 +20,9 @@ struct CompositionOptions
   double correctionRelativeDecrease = 0.01;
   // Each vertex's Gauss-Newton step is tried first at this multiple (then halved).
   double correctionOverrelaxation = 1.8;
+  // On the disk, the per-vertex sweeps begin after a few sweeps at the samples' scale
+  // (SampleScaleCorrection.h), which lower the final mean angle distortion.
+  bool correctAtSampleScale = true;
   // The figures (mean |log area ratio| before and after the correction) speak of the surface's
   // first this many triangles, 0 = all: with holes filled, the input's own triangles come first
   // and the fill after them (the fill is corrected with the rest, but is not the user's).

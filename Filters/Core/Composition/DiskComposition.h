@@ -18,11 +18,13 @@
 //    triangles where the map bends) are repaired the same way on the mesh. Both use
 //    Freitag-Plassmann moves of a small, growing neighbourhood (Untangling.h).
 // 3. Area correction (optional, on by default). The transport is area-preserving in the limit
-//    of many samples; at a finite count, what remains is the interpolation error inside each
+//    of many samples; at a finite count, what remains is the interpolation error: at the
+//    samples' scale (the cell centroids are not exactly T^-1 of the samples), inside each
 //    sample triangle (mesh triangles that span several sample triangles where the transport
-//    bends, and the mesh-scale noise of the discrete conformal factor). Gauss-Seidel sweeps of
-//    per-vertex Gauss-Newton steps on sum_t A*_t log(A_t / A*_t)^2 move each vertex so its
-//    triangles get their surface area fraction A*_t; a step is kept only if it lowers the
+//    bends, and the mesh-scale noise of the discrete conformal factor). (a) A few sweeps move
+//    one sample image at a time with every mesh point of its star (SampleScaleCorrection.h);
+//    then (b) Gauss-Seidel sweeps of per-vertex Gauss-Newton steps on
+//    sum_t A*_t log(A_t / A*_t)^2 move each vertex so its triangles get their surface area fraction A*_t; a step is kept only if it lowers the
 //    star's sum A*_t (r + 1/r - 2), r = A_t / A*_t, which is infinite at zero area, so the
 //    correction never creates a flip; boundary vertices keep the transport's boundary map
 //    (only ear corners, and stars still off by 5% at the end, slide along the circle). Both the
@@ -53,8 +55,10 @@ struct CompositionResult
   std::int64_t flippedAfterInterpolation = 0; // triangles with signed area <= 0 after step 1
   std::int64_t untangledVertices = 0;         // vertices moved by step 2
   std::int64_t flippedTriangles = 0;          // after everything (0 unless untangling failed)
-  int correctionSweeps = 0;
+  int sampleScaleSweeps = 0;                  // step 3a's
+  int correctionSweeps = 0;                   // step 3b's
   double meanAbsLogAreaRatioInterpolated = 0.0; // after steps 1-2
+  double meanAbsLogAreaRatioSampleScale = 0.0;  // after step 3a (when it ran)
   double meanAbsLogAreaRatio = 0.0;             // final
   double secondsInterpolation = 0.0;
   double secondsUntangling = 0.0;

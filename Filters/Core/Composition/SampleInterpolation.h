@@ -5,6 +5,7 @@
 #define OTPARAM_COMPOSITION_SAMPLEINTERPOLATION_H
 
 #include "Composition/Composition.h"
+#include "Composition/SampleScaleCorrection.h"
 #include "Composition/Untangling.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -128,7 +129,9 @@ public:
   }
 
   // Returns the image of p; `outsideHull` tells whether p lay outside the samples' hull.
-  Vec2 operator()(Vec2 p, bool& outsideHull)
+  // `corners`, when given, receives the samples of p's triangle and their weights (left
+  // untouched outside the hull).
+  Vec2 operator()(Vec2 p, bool& outsideHull, SampleCorners* corners = nullptr)
   {
     RT::Locate_type type;
     int li = 0;
@@ -138,6 +141,11 @@ public:
     if (type == RT::VERTEX)
     {
       this->Hint = face;
+      if (corners)
+      {
+        corners->sample = { face->vertex(li)->info(), -1, -1 };
+        corners->weight = { 1.0, 0.0, 0.0 };
+      }
       return this->Images[face->vertex(li)->info()];
     }
     if (this->Triangulation.is_infinite(face) && type == RT::EDGE)
@@ -158,6 +166,14 @@ public:
       // 1e-100 from it, which 1 minus two weights near 1 and 0 would round away.
       const int k = this->pinnedAtOrigin(face, 0) ? 0 : (this->pinnedAtOrigin(face, 1) ? 1 : 2);
       w[k] = 1.0 - w[(k + 1) % 3] - w[(k + 2) % 3];
+      if (corners)
+      {
+        for (int j = 0; j < 3; ++j)
+        {
+          corners->sample[j] = face->vertex(j)->info();
+          corners->weight[j] = w[j];
+        }
+      }
       const Vec2 linear =
         w[0] * this->image(face, 0) + w[1] * this->image(face, 1) + w[2] * this->image(face, 2);
       if (!this->pinnedAtOrigin(face, k))
