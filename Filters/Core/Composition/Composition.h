@@ -117,6 +117,30 @@ inline std::string checkTargetAreaShares(
       std::to_string(bad - shares.begin()) + " is not a positive number";
 }
 
+// The merit function of the corrections' line searches: sum A* (r + 1/r - 2) = (A - A*)^2 / A,
+// like log(r)^2 symmetric in log r, minimal at r = 1 and infinite at r = 0, but without a
+// logarithm (the sweeps spent a fifth of their time in std::log). A caller makes the sum
+// +infinity when a triangle would not be positive.
+inline double areaMerit(double area, double target)
+{
+  const double d = area - target;
+  return d * d / area;
+}
+
+// log(A / A*) for the corrections' Gauss-Newton steps, by its atanh series where the sweeps
+// spend their time (|s| <= 0.05: truncation below 4e-12 of the log): the step needs no more,
+// the merit decides. 273k points: composition 1.73 -> 1.45 s, the same sweeps and figures.
+inline double logAreaRatio(double area, double target)
+{
+  const double s = (area - target) / (area + target);
+  if (std::abs(s) > 0.05)
+  {
+    return std::log(area / target);
+  }
+  const double s2 = s * s;
+  return 2.0 * s * (1.0 + s2 * (1.0 / 3.0 + s2 * (0.2 + s2 * (1.0 / 7.0))));
+}
+
 inline double meanAbsLogAreaRatio(const std::vector<Triangle>& triangles,
   const std::vector<Vec2>& uv, const std::vector<double>& surfaceFraction)
 {

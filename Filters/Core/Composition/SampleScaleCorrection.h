@@ -18,7 +18,7 @@ namespace composition
 {
 
 // Where a mesh point lies in the samples' triangulation: its samples and their barycentric
-// weights (sample -1: none; a point with no sample takes no part in the coarse moves).
+// weights (sample -1: none; a point with no sample takes no part in the sample-scale moves).
 struct SampleCorners
 {
   std::array<int, 3> sample = { -1, -1, -1 };
@@ -145,14 +145,15 @@ private:
       {
         if (this->carries(v, k))
         {
-          this->Points[fill[this->Corners[v].sample[k]]++] = static_cast<int>(v);
+          this->Points[fill[this->Corners[v].sample[k]]++].point = static_cast<int>(v);
         }
       }
     }
   }
 
   // Each triangle's moving samples (the triangles independent, so in parallel), then each
-  // sample's triangles, those with a corner among its points, and the samples' colours.
+  // sample's triangles, those with a corner among its points, their weights, and the samples'
+  // colours.
   void listTriangles()
   {
     const auto triangles = static_cast<std::int64_t>(this->Triangles.size());
@@ -180,10 +181,36 @@ private:
     {
       for (int k = 0; k < count[t]; ++k)
       {
-        this->TrianglesOf[fill[movers[t][k]]++] = static_cast<int>(t);
+        this->TrianglesOf[fill[movers[t][k]]++].triangle = static_cast<int>(t);
       }
     }
+    this->weighEntries();
     this->colourSamples(movers, count);
+  }
+
+  // The weights of each sample's triangle corners and points (in float: they only steer the
+  // moves, which measure the areas in double), each sample's in turn (in parallel).
+  void weighEntries()
+  {
+    const auto samples = static_cast<std::int64_t>(this->Movable.size());
+#pragma omp parallel for schedule(static)
+    for (std::int64_t s = 0; s < samples; ++s)
+    {
+      for (int e = this->TriangleOffsets[s]; e < this->TriangleOffsets[s + 1]; ++e)
+      {
+        const Triangle& t = this->Triangles[this->TrianglesOf[e].triangle];
+        for (int k = 0; k < 3; ++k)
+        {
+          this->TrianglesOf[e].weight[k] =
+            static_cast<float>(this->weight(t[k], static_cast<int>(s)));
+        }
+      }
+      for (int e = this->PointOffsets[s]; e < this->PointOffsets[s + 1]; ++e)
+      {
+        this->Points[e].weight =
+          static_cast<float>(this->weight(this->Points[e].point, static_cast<int>(s)));
+      }
+    }
   }
 
   // Greedy colouring of the samples that move something: two that move a common triangle get
@@ -202,7 +229,7 @@ private:
       taken.assign(classSizes.size(), 0);
       for (int e = this->TriangleOffsets[s]; e < this->TriangleOffsets[s + 1]; ++e)
       {
-        const int t = this->TrianglesOf[e];
+        const int t = this->TrianglesOf[e].triangle;
         for (int m = 0; m < count[t]; ++m)
         {
           const int c = colour[movers[t][m]];
@@ -239,7 +266,8 @@ private:
     double gx = 0.0, gy = 0.0, hxx = 0.0, hxy = 0.0, hyy = 0.0, energy = 0.0;
     for (int k = 0; k < count; ++k)
     {
-      const int ti = this->TrianglesOf[first + k];
+      const CornerWeights& entry = this->TrianglesOf[first + k];
+      const int ti = entry.triangle;
       const Triangle& t = this->Triangles[ti];
       const Vec2 a = uv[t[0]], b = uv[t[1]], c = uv[t[2]];
       const double area = 0.5 * cross(b - a, c - a);
@@ -249,18 +277,18 @@ private:
       }
       // d(area) / d(displacement): each corner's area gradient times its weight.
       const Vec2 slope = 0.5 *
-        (this->weight(t[0], s) * Vec2{ b.y - c.y, c.x - b.x } +
-          this->weight(t[1], s) * Vec2{ c.y - a.y, a.x - c.x } +
-          this->weight(t[2], s) * Vec2{ a.y - b.y, b.x - a.x });
+        (double(entry.weight[0]) * Vec2{ b.y - c.y, c.x - b.x } +
+          double(entry.weight[1]) * Vec2{ c.y - a.y, a.x - c.x } +
+          double(entry.weight[2]) * Vec2{ a.y - b.y, b.x - a.x });
       const double target = this->Fraction[ti] * totalArea;
       const double ax = slope.x / area, ay = slope.y / area;
-      const double residual = std::log(area / target);
+      const double residual = logAreaRatio(area, target);
       gx += target * residual * ax;
       gy += target * residual * ay;
       hxx += target * ax * ax;
       hxy += target * ax * ay;
       hyy += target * ay * ay;
-      energy += (area - target) * (area - target) / area;
+      energy += areaMerit(area, target);
       scratch.area[k] = area;
       scratch.slope[k] = slope;
       scratch.target[k] = target;
@@ -279,14 +307,14 @@ private:
       {
         const double area = scratch.area[k] + lambda * dot(scratch.slope[k], step);
         positive = area > 0.0;
-        merit += (area - scratch.target[k]) * (area - scratch.target[k]) / area;
+        merit += areaMerit(area, scratch.target[k]);
       }
       if (positive && merit < energy)
       {
         for (int e = this->PointOffsets[s]; e < this->PointOffsets[s + 1]; ++e)
         {
-          const int v = this->Points[e];
-          uv[v] = uv[v] + (lambda * this->weight(v, s)) * step;
+          const int v = this->Points[e].point;
+          uv[v] = uv[v] + (lambda * this->Points[e].weight) * step;
         }
         return true;
       }
@@ -298,7 +326,20 @@ private:
   const std::vector<SampleCorners>& Corners;
   const std::vector<char> Movable;
   const std::vector<double>& Fraction;
-  std::vector<int> PointOffsets, Points, TriangleOffsets, TrianglesOf, ClassStarts, Order;
+  // A sample's triangle with its corners' weights, and a sample's point with its weight.
+  struct CornerWeights
+  {
+    int triangle = -1;
+    std::array<float, 3> weight = { 0.0f, 0.0f, 0.0f };
+  };
+  struct PointWeight
+  {
+    int point = -1;
+    float weight = 0.0f;
+  };
+  std::vector<int> PointOffsets, TriangleOffsets, ClassStarts, Order;
+  std::vector<PointWeight> Points;
+  std::vector<CornerWeights> TrianglesOf;
 };
 
 } // namespace composition
