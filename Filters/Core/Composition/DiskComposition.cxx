@@ -160,16 +160,18 @@ bool interpolate(const std::vector<Vec2>& conformalUv, const std::vector<int>& b
 }
 
 // Step 3a: sweeps at the samples' scale (SampleScaleCorrection) until one lowers the mean
-// |log area ratio| by less than a tenth, at most CoarseSweeps (on face_choi_bff_17k the
-// first three lower it by 52%, 20% and 6%; more sweeps changed the final figures little).
-// The samples on the circle and one pinned at the origin with its image (a staged
-// transport's protrusion tip) stay.
-void correctAtSampleScale(const SurfaceMesh& surface, const std::vector<int>& boundaryLoop,
+// |log area ratio| (over the measured triangles, as the figures) by less than a tenth, at most
+// SampleScaleSweeps (on face_choi_bff_17k the first three lower it by 52%, 20% and 6%; more
+// sweeps changed the final figures little). The samples on the circle and one pinned at the
+// origin with its image (a staged transport's protrusion tip) stay. False when `report` asks
+// to abort.
+template <class Report>
+bool correctAtSampleScale(const SurfaceMesh& surface, const std::vector<int>& boundaryLoop,
   const std::vector<Vec2>& samples, const std::vector<Vec2>& sampleImages,
   const std::vector<SampleCorners>& corners, const std::vector<double>& surfaceFraction,
-  CompositionResult& result)
+  std::size_t measuredTriangles, const Report& report, CompositionResult& result)
 {
-  constexpr int CoarseSweeps = 4;
+  constexpr int SampleScaleSweeps = 4;
   constexpr double SettledGain = 0.1;
   std::vector<char> movable(samples.size());
   for (size_t i = 0; i < samples.size(); ++i)
@@ -182,14 +184,19 @@ void correctAtSampleScale(const SurfaceMesh& surface, const std::vector<int>& bo
   const double totalArea = PlaneGeometry::totalArea(result.uv, boundaryLoop);
   double& mean = result.meanAbsLogAreaRatioSampleScale;
   mean = result.meanAbsLogAreaRatioInterpolated;
-  for (int sweep = 0; sweep < CoarseSweeps; ++sweep)
+  for (int sweep = 0; sweep < SampleScaleSweeps; ++sweep)
   {
+    if (!report(0.3))
+    {
+      return false;
+    }
     ++result.sampleScaleSweeps;
     if (correction.sweep(result.uv, totalArea) == 0)
     {
       break;
     }
-    const double now = meanAbsLogAreaRatio(surface.triangles, result.uv, surfaceFraction);
+    const double now =
+      measuredMeanAbsLogAreaRatio(surface, result.uv, surfaceFraction, measuredTriangles);
     const bool settled = mean - now < SettledGain * mean;
     mean = now;
     if (settled)
@@ -197,6 +204,7 @@ void correctAtSampleScale(const SurfaceMesh& surface, const std::vector<int>& bo
       break;
     }
   }
+  return report(0.3);
 }
 
 // Step 3: the area correction of result.uv, and its figure. False when `report` asks to abort.
@@ -283,10 +291,12 @@ CompositionResult composeWithInverseTransport(const SurfaceMesh& surface,
   }
 
   start = Clock::now();
-  if (options.correctAreas && options.correctAtSampleScale)
+  if (options.correctAreas && options.correctAtSampleScale &&
+    !correctAtSampleScale(surface, boundaryLoop, samples, sampleImages, corners, surfaceFraction,
+      options.measuredTriangles, report, result))
   {
-    correctAtSampleScale(
-      surface, boundaryLoop, samples, sampleImages, corners, surfaceFraction, result);
+    result.uv.clear(); // an aborted run has no map
+    return result;
   }
   if (options.correctAreas &&
     !correct(surface, boundaryLoop, stars, surfaceFraction, options, report, result))
