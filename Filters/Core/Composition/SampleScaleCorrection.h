@@ -81,16 +81,17 @@ private:
   struct Scratch
   {
     std::vector<double> area, target;
-    std::vector<Vec2> slope;
+    std::vector<Vec2> slope, before;
   };
 
-  // The weight of `sample` at mesh point v (0 outside its star).
+  // The weight of `sample` at mesh point v (0 outside its star, or where the sample does not
+  // carry v: the moves and their predicted areas read the same weights).
   double weight(int v, int sample) const
   {
     const SampleCorners& c = this->Corners[v];
     for (int k = 0; k < 3; ++k)
     {
-      if (c.sample[k] == sample)
+      if (c.sample[k] == sample && this->carries(v, k))
       {
         return c.weight[k];
       }
@@ -311,15 +312,43 @@ private:
       }
       if (positive && merit < energy)
       {
-        for (int e = this->PointOffsets[s]; e < this->PointOffsets[s + 1]; ++e)
-        {
-          const int v = this->Points[e].point;
-          uv[v] = uv[v] + (lambda * this->Points[e].weight) * step;
-        }
-        return true;
+        return this->moveKeepingTrianglesPositive(s, lambda * step, uv, scratch);
       }
     }
     return false;
+  }
+
+  // Moves sample s's points by their weights times `displacement`. The line search predicted
+  // every area positive; a triangle it predicted to shrink by half or more is measured again
+  // after the move, and if rounding left one not positive, the move is taken back.
+  bool moveKeepingTrianglesPositive(
+    int s, Vec2 displacement, std::vector<Vec2>& uv, Scratch& scratch) const
+  {
+    scratch.before.clear();
+    for (int e = this->PointOffsets[s]; e < this->PointOffsets[s + 1]; ++e)
+    {
+      const int v = this->Points[e].point;
+      scratch.before.push_back(uv[v]);
+      uv[v] = uv[v] + static_cast<double>(this->Points[e].weight) * displacement;
+    }
+    const int first = this->TriangleOffsets[s], count = this->TriangleOffsets[s + 1] - first;
+    for (int k = 0; k < count; ++k)
+    {
+      if (scratch.area[k] + dot(scratch.slope[k], displacement) >= 0.5 * scratch.area[k])
+      {
+        continue;
+      }
+      const Triangle& t = this->Triangles[this->TrianglesOf[first + k].triangle];
+      if (!(signedArea(uv[t[0]], uv[t[1]], uv[t[2]]) > 0.0))
+      {
+        for (int e = this->PointOffsets[s]; e < this->PointOffsets[s + 1]; ++e)
+        {
+          uv[this->Points[e].point] = scratch.before[e - this->PointOffsets[s]];
+        }
+        return false;
+      }
+    }
+    return true;
   }
 
   const std::vector<Triangle>& Triangles;
