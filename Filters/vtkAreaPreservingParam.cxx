@@ -154,6 +154,9 @@ void WriteFigures(const otparam::AreaPreservingResult& run, vtkDataObject* figur
   WriteCommonFigures(run, vtkAreaPreservingParam::DISK, figures);
   AddIntScalar(figures, "FilledHoles", run.conformal.filledHoles);
   AddScalar(figures, "FillAreaFraction", run.conformal.fillAreaFraction);
+  AddIntScalar(figures, "SampleScaleSweeps", run.composition.sampleScaleSweeps);
+  AddScalar(
+    figures, "SampleScaleMeanAbsLogAreaRatio", run.composition.meanAbsLogAreaRatioSampleScale);
   AddIntScalar(figures, "CorrectionSweeps", run.composition.correctionSweeps);
   AddIntScalar(figures, "TransportStages", run.transportStages);
 }

@@ -183,7 +183,6 @@ bool correctAtSampleScale(const SurfaceMesh& surface, const std::vector<int>& bo
   const SampleScaleCorrection correction(surface.triangles, corners, movable, surfaceFraction);
   const double totalArea = PlaneGeometry::totalArea(result.uv, boundaryLoop);
   double& mean = result.meanAbsLogAreaRatioSampleScale;
-  mean = result.meanAbsLogAreaRatioInterpolated;
   for (int sweep = 0; sweep < SampleScaleSweeps; ++sweep)
   {
     if (!report(0.3))
@@ -284,6 +283,7 @@ CompositionResult composeWithInverseTransport(const SurfaceMesh& surface,
   result.meanAbsLogAreaRatioInterpolated =
     measuredMeanAbsLogAreaRatio(surface, result.uv, surfaceFraction, options.measuredTriangles);
   result.meanAbsLogAreaRatio = result.meanAbsLogAreaRatioInterpolated;
+  result.meanAbsLogAreaRatioSampleScale = result.meanAbsLogAreaRatioInterpolated;
   if (!report(0.3))
   {
     result.uv.clear(); // an aborted run has no map

@@ -58,7 +58,7 @@ struct CompositionResult
   int sampleScaleSweeps = 0;                  // step 3a's
   int correctionSweeps = 0;                   // step 3b's
   double meanAbsLogAreaRatioInterpolated = 0.0; // after steps 1-2
-  double meanAbsLogAreaRatioSampleScale = 0.0;  // after step 3a (when it ran)
+  double meanAbsLogAreaRatioSampleScale = 0.0;  // after step 3a (the interpolated one without)
   double meanAbsLogAreaRatio = 0.0;             // final
   double secondsInterpolation = 0.0;
   double secondsUntangling = 0.0;
