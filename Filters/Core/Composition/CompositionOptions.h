@@ -46,12 +46,12 @@ struct CompositionOptions
   std::function<bool(double)> progress;
 };
 
-// The thorough correction: a gentler over-relaxation and sweeps until they gain less than 0.25%
-// of the mean. On every shared mesh the area distortion ends lower than with the defaults, and
-// on all but hand_stein_810 (38.88 -> 39.31 degrees) the angle distortion too, for about twice
-// the sweeps (hand_choi_53k: mean |log area ratio| 0.0132 -> 0.0110, mean angle distortion
-// 44.80 -> 44.60 degrees, composition 0.22 -> 0.39 s; the sphere's brain 0.0024 -> 0.0019,
-// 17.01 -> 16.75 degrees; docs/design.md).
+// The thorough correction: a gentler over-relaxation and per-vertex sweeps until they gain less
+// than 0.25% of the mean. On every shared disk mesh the area distortion ends lower than with the
+// defaults, and on all but hand_stein_810 (38.62 -> 39.47 degrees) and face_choi_bff_17k (24.15
+// -> 24.22) the angle distortion too, for about twice the sweeps (hand_choi_53k: mean |log area
+// ratio| 0.0119 -> 0.0104, mean angle distortion 44.67 -> 44.39 degrees; the sphere's brain
+// 0.0024 -> 0.0019, 17.01 -> 16.75 degrees; docs/design.md, 2026-11-28).
 inline void makeCorrectionThorough(CompositionOptions& options)
 {
   options.correctionOverrelaxation = 1.5;
