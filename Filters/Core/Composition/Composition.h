@@ -71,6 +71,23 @@ struct VertexStars
   }
 };
 
+// Where a mesh point lies in the samples' triangulation (step 1 finds it, step 3a uses it): its
+// samples and their barycentric weights (sample -1: none; a point with no sample takes no part
+// in the sample-scale moves).
+struct SampleCorners
+{
+  std::array<int, 3> sample = { -1, -1, -1 };
+  std::array<double, 3> weight = { 0.0, 0.0, 0.0 };
+};
+
+// A sample pinned at the origin with its image there (a staged transport's protrusion tip,
+// SamplerOptions::sampleAtOrigin): the interpolation keeps its neighbourhood's relative
+// precision and the sample-scale moves leave it.
+inline bool pinnedAtOrigin(Vec2 sample, Vec2 image)
+{
+  return sample.x == 0.0 && sample.y == 0.0 && image.x == 0.0 && image.y == 0.0;
+}
+
 // Area fraction of each triangle on the surface.
 inline std::vector<double> surfaceAreaFractions(const SurfaceMesh& surface)
 {

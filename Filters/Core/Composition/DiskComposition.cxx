@@ -3,6 +3,7 @@
 #include "Composition/AreaCorrection.h"
 #include "Composition/Composition.h"
 #include "Composition/SampleInterpolation.h"
+#include "Composition/SampleScaleCorrection.h"
 #include "Composition/Untangling.h"
 
 #include <algorithm>
@@ -176,9 +177,7 @@ bool correctAtSampleScale(const SurfaceMesh& surface, const std::vector<int>& bo
   std::vector<char> movable(samples.size());
   for (size_t i = 0; i < samples.size(); ++i)
   {
-    const bool pinned = samples[i].x == 0.0 && samples[i].y == 0.0 && sampleImages[i].x == 0.0 &&
-      sampleImages[i].y == 0.0;
-    movable[i] = !onCircle(samples[i]) && !pinned;
+    movable[i] = !onCircle(samples[i]) && !pinnedAtOrigin(samples[i], sampleImages[i]);
   }
   const SampleScaleCorrection correction(surface.triangles, corners, movable, surfaceFraction);
   const double totalArea = PlaneGeometry::totalArea(result.uv, boundaryLoop);

@@ -5,7 +5,6 @@
 #define OTPARAM_COMPOSITION_SAMPLEINTERPOLATION_H
 
 #include "Composition/Composition.h"
-#include "Composition/SampleScaleCorrection.h"
 #include "Composition/Untangling.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -236,8 +235,7 @@ private:
 
   bool pinnedAtOrigin(RT::Face_handle f, int k) const
   {
-    const Vec2 q = this->position(f, k), image = this->image(f, k);
-    return q.x == 0.0 && q.y == 0.0 && image.x == 0.0 && image.y == 0.0;
+    return composition::pinnedAtOrigin(this->position(f, k), this->image(f, k));
   }
 
   // p lies beyond the hull edge ab. When a and b are on the circle, p is in the circular

@@ -17,14 +17,6 @@ namespace otparam
 namespace composition
 {
 
-// Where a mesh point lies in the samples' triangulation: its samples and their barycentric
-// weights (sample -1: none; a point with no sample takes no part in the sample-scale moves).
-struct SampleCorners
-{
-  std::array<int, 3> sample = { -1, -1, -1 };
-  std::array<double, 3> weight = { 0.0, 0.0, 0.0 };
-};
-
 // The interpolation leaves an error at the samples' scale (the cell centroids are not exactly
 // T^-1 of the samples): on face_choi_bff_17k a third of its mean |log area ratio| survives
 // averaging over the samples' stars. Per-vertex sweeps spread such an error over tens of

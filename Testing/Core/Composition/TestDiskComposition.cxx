@@ -54,6 +54,14 @@ std::vector<int> boundaryOf(const SurfaceMesh& surface)
   EXPECT_EQ(checkDiskTopology(surface, loop), "");
   return loop;
 }
+
+void expectOnCircle(const std::vector<Vec2>& uv, const std::vector<int>& loop)
+{
+  for (int v : loop)
+  {
+    EXPECT_NEAR(norm(uv[v]), 1.0, 1e-14) << v;
+  }
+}
 } // namespace
 
 TEST(AreaPreservingComposition, IdentityTransportKeepsTheConformalImage)
@@ -238,10 +246,7 @@ TEST(AreaPreservingComposition, UntanglesFlipsAndCorrectsAreas)
   EXPECT_LE(result.meanAbsLogAreaRatio, 0.2 * result.meanAbsLogAreaRatioInterpolated)
     << "interpolated " << result.meanAbsLogAreaRatioInterpolated;
   EXPECT_LE(result.meanAbsLogAreaRatio, 0.03);
-  for (int v : loop)
-  {
-    EXPECT_NEAR(norm(result.uv[v]), 1.0, 1e-14) << v;
-  }
+  expectOnCircle(result.uv, loop);
 }
 
 // An area error at the samples' scale (sample images pushed outwards by r -> r^1.3, a smooth
@@ -281,10 +286,7 @@ TEST(AreaPreservingComposition, SampleScaleSweepsRemoveASmoothError)
   EXPECT_LT(after.meanAngleDistortionDegrees, before.meanAngleDistortionDegrees);
   EXPECT_LE(after.meanAbsLogAreaRatio, before.meanAbsLogAreaRatio);
   EXPECT_EQ(after.flippedTriangles, 0);
-  for (int v : loop)
-  {
-    EXPECT_NEAR(norm(both.uv[v]), 1.0, 1e-14) << v;
-  }
+  expectOnCircle(both.uv, loop);
 }
 
 // The untangling and the correction's sweeps move vertices on both cores (colour by colour in
@@ -397,10 +399,7 @@ TEST(AreaPreservingComposition, CorrectsTowardsGivenTargetShares)
       options.targetAreaShares[t] * std::abs(std::log(a / area / options.targetAreaShares[t]));
   }
   EXPECT_NEAR(mean, result.meanAbsLogAreaRatio, 1e-12);
-  for (int v : loop)
-  {
-    EXPECT_NEAR(norm(result.uv[v]), 1.0, 1e-14) << v;
-  }
+  expectOnCircle(result.uv, loop);
 
   options.targetAreaShares.pop_back();
   EXPECT_NE(
