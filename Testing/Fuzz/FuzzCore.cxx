@@ -696,6 +696,10 @@ CaseResult fuzzConformalSphere(Rng& rng)
   {
     mutateMesh(soup, rng);
   }
+  if (const char* dump = std::getenv("OTPARAM_FUZZ_DUMP"))
+  {
+    std::ofstream(dump) << offText(soup);
+  }
   // With FillHoles the mutations' holes are closed for the map, then the fill dropped.
   SphereConformalStage stage =
     runSphereConformalStage(soup, ConformalSphereMapOptions(), rng() % 2);
