@@ -135,7 +135,7 @@ Row run(const TriangleSoup& mesh, AreaPreservingOptions options)
     return true;
   };
   Row row = chooseDomain(mesh) == Domain::Sphere ? rowOf(parameterizeSphere(mesh, options))
-                                                : rowOf(parameterizeDisk(mesh, options));
+                                                 : rowOf(parameterizeDisk(mesh, options));
   // From the last check to the end: the composition's figures, counted as the last stage's.
   const double tail = std::chrono::duration<double>(Clock::now() - last).count();
   if (tail > longest[lastStage])
@@ -169,8 +169,7 @@ TriangleSoup loopSubdivided(const TriangleSoup& soup, int steps)
   }
   Mesh mesh;
   CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh(points, polygons, mesh);
-  CGAL::Subdivision_method_3::Loop_subdivision(
-    mesh, CGAL::parameters::number_of_iterations(steps));
+  CGAL::Subdivision_method_3::Loop_subdivision(mesh, CGAL::parameters::number_of_iterations(steps));
   TriangleSoup out;
   std::vector<int> id(mesh.number_of_vertices(), -1);
   for (const auto v : mesh.vertices())
@@ -296,11 +295,12 @@ int main(int argc, char** argv)
   }
   if (progressGaps)
   {
-    std::printf("\nAbort latency: per stage, the progress checks (where AbortExecute is read) and the "
-                "longest time between two of them, seconds, with the pipeline's progress at its two "
-                "ends (last run)\n\n"
-                "| mesh | vertices | conformal | sampling | transport | composition |\n"
-                "|---|---|---|---|---|---|\n");
+    std::printf(
+      "\nAbort latency: per stage, the progress checks (where AbortExecute is read) and the "
+      "longest time between two of them, seconds, with the pipeline's progress at its two "
+      "ends (last run)\n\n"
+      "| mesh | vertices | conformal | sampling | transport | composition |\n"
+      "|---|---|---|---|---|---|\n");
     for (const auto& [name, points, row] : gaps)
     {
       std::printf("| %s | %zu |", name.c_str(), points);

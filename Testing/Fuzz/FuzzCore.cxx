@@ -1113,7 +1113,8 @@ int main(int argc, char** argv)
   if (!parse(argc, argv, args))
   {
     std::fprintf(stderr,
-      "usage: %s [--cases N] [--seed S] [--entry NAME] [--case K] [--case-seconds T] [--list] [--verbose]\n",
+      "usage: %s [--cases N] [--seed S] [--entry NAME] [--case K] [--case-seconds T] [--list] "
+      "[--verbose]\n",
       argv[0]);
     return 2;
   }

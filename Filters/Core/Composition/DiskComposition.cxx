@@ -122,13 +122,13 @@ std::string checkCompositionInputs(const SurfaceMesh& surface, const std::vector
 }
 
 // Step 1: every point's conformal image through the samples' interpolant, the boundary's
-// pushed onto the circle; `corners` gets each point's samples and weights (none for the
-// boundary's). False when `report` asks to abort.
+// pushed onto the circle; `corners`, unless null (step 3a will not run), gets each point's
+// samples and weights (none for the boundary's). False when `report` asks to abort.
 template <class Report>
 bool interpolate(const std::vector<Vec2>& conformalUv, const std::vector<int>& boundaryLoop,
   const std::vector<Vec2>& samples, const std::vector<Vec2>& sampleImages,
   const std::vector<double>& sampleHeights, const Report& report, CompositionResult& result,
-  std::vector<SampleCorners>& corners)
+  std::vector<SampleCorners>* corners)
 {
   // The power diagram's weights: |x - y_i|^2 - w_i = |x|^2 - 2 (<x, y_i> - h_i).
   std::vector<double> weights(sampleHeights.empty() ? 0 : samples.size());
@@ -140,7 +140,10 @@ bool interpolate(const std::vector<Vec2>& conformalUv, const std::vector<int>& b
   std::tie(result.flippedSampleTriangles, result.flippedSampleTrianglesAfterUntangling) =
     interpolant.untangleImages();
   result.interpolatedUv.resize(conformalUv.size());
-  corners.assign(conformalUv.size(), SampleCorners());
+  if (corners)
+  {
+    corners->assign(conformalUv.size(), SampleCorners());
+  }
   for (size_t v = 0; v < conformalUv.size(); ++v)
   {
     // An abort is honoured every 2^18 points (~0.1 s).
@@ -149,13 +152,17 @@ bool interpolate(const std::vector<Vec2>& conformalUv, const std::vector<int>& b
       return false;
     }
     bool outside = false;
-    result.interpolatedUv[v] = interpolant(conformalUv[v], outside, &corners[v]);
+    result.interpolatedUv[v] =
+      interpolant(conformalUv[v], outside, corners ? &(*corners)[v] : nullptr);
     result.outsideSampleHull += outside;
   }
   for (int v : boundaryLoop)
   {
     result.interpolatedUv[v] = normalized(result.interpolatedUv[v]);
-    corners[v] = SampleCorners(); // stays on the circle
+    if (corners)
+    {
+      (*corners)[v] = SampleCorners(); // stays on the circle
+    }
   }
   return true;
 }
@@ -255,9 +262,11 @@ CompositionResult composeWithInverseTransport(const SurfaceMesh& surface,
   };
 
   auto start = Clock::now();
+  // Where each point lies among the samples, for step 3a only (40 bytes a point).
+  const bool atSampleScale = options.correctAreas && options.correctAtSampleScale;
   std::vector<SampleCorners> corners;
-  if (!interpolate(
-        conformalUv, boundaryLoop, samples, sampleImages, sampleHeights, report, result, corners))
+  if (!interpolate(conformalUv, boundaryLoop, samples, sampleImages, sampleHeights, report, result,
+        atSampleScale ? &corners : nullptr))
   {
     return result;
   }
@@ -290,7 +299,7 @@ CompositionResult composeWithInverseTransport(const SurfaceMesh& surface,
   }
 
   start = Clock::now();
-  if (options.correctAreas && options.correctAtSampleScale &&
+  if (atSampleScale &&
     !correctAtSampleScale(surface, boundaryLoop, samples, sampleImages, corners, surfaceFraction,
       options.measuredTriangles, report, result))
   {

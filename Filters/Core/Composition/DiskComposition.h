@@ -24,11 +24,12 @@
 //    bends, and the mesh-scale noise of the discrete conformal factor). (a) A few sweeps move
 //    one sample image at a time with every mesh point of its star (SampleScaleCorrection.h);
 //    then (b) Gauss-Seidel sweeps of per-vertex Gauss-Newton steps on
-//    sum_t A*_t log(A_t / A*_t)^2 move each vertex so its triangles get their surface area fraction A*_t; a step is kept only if it lowers the
-//    star's sum A*_t (r + 1/r - 2), r = A_t / A*_t, which is infinite at zero area, so the
-//    correction never creates a flip; boundary vertices keep the transport's boundary map
-//    (only ear corners, and stars still off by 5% at the end, slide along the circle). Both the
-//    interpolated and the corrected figures are reported.
+//    sum_t A*_t log(A_t / A*_t)^2 move each vertex so its triangles get their surface area
+//    fraction A*_t; a step is kept only if it lowers the star's sum A*_t (r + 1/r - 2),
+//    r = A_t / A*_t, which is infinite at zero area, so the correction never creates a flip;
+//    boundary vertices keep the transport's boundary map (only ear corners, and stars still
+//    off by 5% at the end, slide along the circle). Both the interpolated and the corrected
+//    figures are reported.
 #ifndef OTPARAM_COMPOSITION_DISKCOMPOSITION_H
 #define OTPARAM_COMPOSITION_DISKCOMPOSITION_H
 

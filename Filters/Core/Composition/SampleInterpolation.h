@@ -93,7 +93,8 @@ public:
       mesh.triangles.push_back(
         { f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info() });
     }
-    const auto before = static_cast<std::int64_t>(flippedTriangles(mesh.triangles, this->Images).size());
+    const auto before =
+      static_cast<std::int64_t>(flippedTriangles(mesh.triangles, this->Images).size());
     // Hull edges, counter-clockwise: an infinite face (inf, a, b) has the hull edge b -> a.
     std::vector<std::pair<int, int>> hullEdges;
     auto face = this->Triangulation.incident_faces(this->Triangulation.infinite_vertex()),

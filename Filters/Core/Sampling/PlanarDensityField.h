@@ -59,9 +59,10 @@ public:
   const std::vector<Triangle>& triangles() const { return Triangles; }
 
   // The density as a source measure (exact integrals over cells clipped to the domain; a power
-  // of the density interpolated the same way is withMappedDensity of it). For the unit disk the domain is the inscribed polygon plus a cap triangle on every boundary
-  // edge (tangents' intersection as apex), so that a sample on the circle always has a cell of
-  // positive measure, with the density of its edge's ends.
+  // of the density interpolated the same way is withMappedDensity of it). For the unit disk
+  // the domain is the inscribed polygon plus a cap triangle on every boundary edge (tangents'
+  // intersection as apex), so that a sample on the circle always has a cell of positive
+  // measure, with the density of its edge's ends.
   std::unique_ptr<SourceMeasure> makeSource(std::string& error) const;
 
 private:

@@ -126,7 +126,8 @@ std::string runawayRefinementError(
   std::ostringstream text;
   text << "the refinement " << (stalled ? "stalled at " : "placed ")
        << (stalled ? reached : std::max(reached, limit)) << " samples for a run aiming at "
-       << static_cast<long long>(runTarget) << " and was stopped: the domain has features too fine or too far out to mesh with "
+       << static_cast<long long>(runTarget)
+       << " and was stopped: the domain has features too fine or too far out to mesh with "
           "MinimumAngle = "
        << options.minimumAngleDegrees
        << " degrees (a spike, a sliver, coordinates near the ends of double precision); check "

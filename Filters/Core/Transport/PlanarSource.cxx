@@ -655,14 +655,14 @@ std::vector<Vec2> withoutOctagonInterior(const std::vector<Vec2>& p)
   {
     return p;
   }
-  const std::array<Vec2, 8> directions = { Vec2{ 1, 0 }, Vec2{ 1, 1 }, Vec2{ 0, 1 },
-    Vec2{ -1, 1 }, Vec2{ -1, 0 }, Vec2{ -1, -1 }, Vec2{ 0, -1 }, Vec2{ 1, -1 } };
+  const std::array<Vec2, 8> directions = { Vec2{ 1, 0 }, Vec2{ 1, 1 }, Vec2{ 0, 1 }, Vec2{ -1, 1 },
+    Vec2{ -1, 0 }, Vec2{ -1, -1 }, Vec2{ 0, -1 }, Vec2{ 1, -1 } };
   const auto same = [](Vec2 a, Vec2 b) { return a.x == b.x && a.y == b.y; };
   std::vector<Vec2> octagon; // counter-clockwise, repeated corners dropped
   for (const Vec2& direction : directions)
   {
-    const Vec2 extreme = *std::max_element(p.begin(), p.end(),
-      [&](Vec2 a, Vec2 b) { return dot(a, direction) < dot(b, direction); });
+    const Vec2 extreme = *std::max_element(
+      p.begin(), p.end(), [&](Vec2 a, Vec2 b) { return dot(a, direction) < dot(b, direction); });
     if (octagon.empty() || !same(extreme, octagon.back()))
     {
       octagon.push_back(extreme);
@@ -684,7 +684,8 @@ std::vector<Vec2> withoutOctagonInterior(const std::vector<Vec2>& p)
     {
       const Vec2 a = octagon[k], d = octagon[(k + 1) % octagon.size()] - a, r = x - a;
       // Clearly inside: by more than any rounding of the cross product.
-      inside = cross(d, r) > 1e-12 * (std::abs(d.x) + std::abs(d.y)) * (std::abs(r.x) + std::abs(r.y));
+      inside =
+        cross(d, r) > 1e-12 * (std::abs(d.x) + std::abs(d.y)) * (std::abs(r.x) + std::abs(r.y));
     }
     if (!inside)
     {

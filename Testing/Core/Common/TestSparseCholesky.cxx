@@ -70,7 +70,8 @@ SparseMatrix borderedGrid(int k, int& interior)
   return lower;
 }
 
-double relativeResidual(const SparseMatrix& lower, const Eigen::MatrixXd& x, const Eigen::MatrixXd& b)
+double relativeResidual(
+  const SparseMatrix& lower, const Eigen::MatrixXd& x, const Eigen::MatrixXd& b)
 {
   const Eigen::MatrixXd ax = lower.selfadjointView<Eigen::Lower>() * x;
   return (ax - b).norm() / b.norm();

@@ -180,13 +180,15 @@ void expectEveryAbortHonoured(
     EXPECT_TRUE(r.status.aborted) << "check " << stopAt << " of " << checks << " (" << stage << ")";
     EXPECT_EQ(r.status.error, "") << "check " << stopAt;
     EXPECT_TRUE(mapOf(r).empty()) << "check " << stopAt << " (" << stage << ")";
-    EXPECT_EQ(asked, stopAt) << "asked again after an abort, check " << stopAt << " (" << stage << ")";
+    EXPECT_EQ(asked, stopAt) << "asked again after an abort, check " << stopAt << " (" << stage
+                             << ")";
   }
 }
 
 TEST(Pipeline, AbortAtAnyCheckIsHonoured)
 {
-  expectEveryAbortHonoured(testing::readSoup(testing::sharedMesh("hemisphere_2k.obj")),
+  expectEveryAbortHonoured(
+    testing::readSoup(testing::sharedMesh("hemisphere_2k.obj")),
     [](const TriangleSoup& s, const AreaPreservingOptions& o) { return parameterizeDisk(s, o); },
     [](const AreaPreservingResult& r) { return r.composition.uv; });
   expectEveryAbortHonoured(

@@ -1,7 +1,7 @@
 // Hole filling on planar disks with 1, 3 and 10 round holes: every loop but the outer one is
-// closed (for the sphere every one), the input's points and triangles stay the leading part in their order, the result
-// is a disk, and the planar fill covers exactly the holes (fairing a planar rim in a plane
-// keeps it planar, so the fill's area is the holes' area).
+// closed (for the sphere every one), the input's points and triangles stay the leading part in
+// their order, the result is a disk, and the planar fill covers exactly the holes (fairing a
+// planar rim in a plane keeps it planar, so the fill's area is the holes' area).
 #include "Mesh/HoleFilling.h"
 
 #include "RingDisk.h"

@@ -121,7 +121,8 @@ TEST(TriangulatedSource, MappedDensityEqualsAFreshBuild)
   for (int k = 0; k < 12; ++k)
   {
     pts.push_back({ std::cos(k * Pi / 6), std::sin(k * Pi / 6) });
-    tris.push_back(k % 2 ? Triangle{ 0, 1 + k, 1 + (k + 1) % 12 } : Triangle{ 0, 1 + (k + 1) % 12, 1 + k });
+    tris.push_back(
+      k % 2 ? Triangle{ 0, 1 + k, 1 + (k + 1) % 12 } : Triangle{ 0, 1 + (k + 1) % 12, 1 + k });
   }
   std::vector<double> f, squared;
   for (const Vec2& p : pts)
@@ -134,8 +135,8 @@ TEST(TriangulatedSource, MappedDensityEqualsAFreshBuild)
   ASSERT_TRUE(source) << error;
   const auto fresh = makeTriangulatedSource(pts, tris, squared, error);
   ASSERT_TRUE(fresh) << error;
-  const auto mapped =
-    withMappedDensity(*source, [](double g) { return std::pow(g, 2.0); }, error);
+  const auto mapped = withMappedDensity(
+    *source, [](double g) { return std::pow(g, 2.0); }, error);
   ASSERT_TRUE(mapped) << error;
   EXPECT_EQ(mapped->totalMass(), fresh->totalMass());
   EXPECT_NE(mapped->totalMass(), source->totalMass());
@@ -158,10 +159,14 @@ TEST(TriangulatedSource, MappedDensityEqualsAFreshBuild)
   source->integrate(cell, c);
   EXPECT_LT(c.mass, a.mass);
   // Refused: a mapped value that is not positive, and a source that is not triangulated.
-  EXPECT_FALSE(withMappedDensity(*source, [](double g) { return 1.0 - g; }, error));
+  EXPECT_FALSE(withMappedDensity(
+    *source, [](double g) { return 1.0 - g; }, error));
   EXPECT_NE(error.find("must be finite and positive"), std::string::npos) << error;
-  EXPECT_TRUE(withMappedDensity(*source, [](double) { return 0.0; }, error, true)) << error;
-  EXPECT_FALSE(withMappedDensity(*makeUnitDiskSource(), [](double g) { return g; }, error));
+  EXPECT_TRUE(withMappedDensity(
+    *source, [](double) { return 0.0; }, error, true))
+    << error;
+  EXPECT_FALSE(withMappedDensity(
+    *makeUnitDiskSource(), [](double g) { return g; }, error));
 }
 
 TEST(TriangulatedSource, CellWithTwoVerticesOneUpToRounding)
