@@ -6,13 +6,15 @@
 //
 // With --progress-gaps, a second table: per stage, how often the pipeline asked whether to go
 // on (its progress callback, where vtkAreaPreservingParam checks AbortExecute) and the longest
-// time between two such checks, i.e. how long an abort can take in that stage. --subdivide K
-// applies K steps of Loop subdivision (CGAL) to each mesh first (the large-surface figures).
+// time between two such checks, i.e. how long an abort can take in that stage. With
+// --composition-steps, a table of the composition's steps: interpolation, untangling, the sweeps
+// at the samples' scale and the per-vertex sweeps (count and seconds). --subdivide K applies K
+// steps of Loop subdivision (CGAL) to each mesh first (the large-surface figures).
 //
 //   otparam_param_benchmark [--repeat R] [--samples N] [--correction-decrease F]
 //                           [--thorough-correction] [--no-correction]
 //                           [--no-sample-scale-correction] [--subdivide K] [--progress-gaps]
-//                           [mesh ...]   (default: every shared mesh)
+//                           [--composition-steps] [mesh ...]   (default: every shared mesh)
 #include "ForkedRun.h"
 #include "MeshFiles.h"
 #include "Pipeline/AreaPreservingPipeline.h"
@@ -70,7 +72,18 @@ struct Row
   int samples, iterations, converged, sweeps;
   double relativeError, interpolatedArea, area, areaMax, angle;
   long long flipsInterpolated, flips;
+  // The composition's steps (seconds; the per-vertex sweeps' are the correction's less step 3a's).
+  double interpolation, untangling, sampleScale, perVertex;
+  int sampleScaleSweeps;
 };
+
+// Step 3a runs on the disk only.
+void sampleScaleOf(const CompositionResult& c, Row& row)
+{
+  row.sampleScale = c.secondsSampleScale;
+  row.sampleScaleSweeps = c.sampleScaleSweeps;
+}
+void sampleScaleOf(const SphereCompositionResult&, Row&) {}
 
 template <class Map>
 Row rowOf(const Map& map)
@@ -93,6 +106,10 @@ Row rowOf(const Map& map)
   row.areaMax = map.figures.maximumAbsLogAreaRatio;
   row.angle = map.figures.meanAngleDistortionDegrees;
   row.flips = map.figures.flippedTriangles;
+  row.interpolation = map.composition.secondsInterpolation;
+  row.untangling = map.composition.secondsUntangling;
+  sampleScaleOf(map.composition, row);
+  row.perVertex = map.composition.secondsCorrection - row.sampleScale;
   row.peak = benchmark::peakMiB();
   return row;
 }
@@ -195,7 +212,7 @@ TriangleSoup loopSubdivided(const TriangleSoup& soup, int steps)
 int main(int argc, char** argv)
 {
   int repeat = 3, subdivide = 0;
-  bool progressGaps = false;
+  bool progressGaps = false, compositionSteps = false;
   AreaPreservingOptions options; // vtkAreaPreservingParam's defaults
   std::vector<std::string> meshes;
   for (int i = 1; i < argc; ++i)
@@ -216,13 +233,15 @@ int main(int argc, char** argv)
       subdivide = std::max(0, std::atoi(argv[++i]));
     else if (!std::strcmp(argv[i], "--progress-gaps"))
       progressGaps = true;
+    else if (!std::strcmp(argv[i], "--composition-steps"))
+      compositionSteps = true;
     else if (argv[i][0] == '-')
     {
       std::fprintf(stderr,
         "unknown option %s\nusage: otparam_param_benchmark [--repeat R] [--samples N] "
         "[--correction-decrease F] [--thorough-correction] [--no-correction] "
         "[--no-sample-scale-correction] [--subdivide K] [--progress-gaps] "
-        "[mesh ...]\n",
+        "[--composition-steps] [mesh ...]\n",
         argv[i]);
       return 2;
     }
@@ -250,6 +269,14 @@ int main(int argc, char** argv)
     Row row;
   };
   std::vector<Gaps> gaps;
+  struct Steps
+  {
+    std::string mesh;
+    std::size_t points;
+    double interpolation, untangling, sampleScale, perVertex, composition;
+    int sampleScaleSweeps, sweeps;
+  };
+  std::vector<Steps> steps;
   for (const auto& name : meshes)
   {
     TriangleSoup mesh;
@@ -276,6 +303,10 @@ int main(int argc, char** argv)
       continue;
     const Row& last = rows.back();
     gaps.push_back({ name, mesh.points.size(), last });
+    steps.push_back({ name, mesh.points.size(), medianOf(rows, &Row::interpolation),
+      medianOf(rows, &Row::untangling), medianOf(rows, &Row::sampleScale),
+      medianOf(rows, &Row::perVertex), medianOf(rows, &Row::composition), last.sampleScaleSweeps,
+      last.sweeps });
     const Reference* ref = nullptr;
     for (const auto& r : References)
       if (name == r.mesh)
@@ -310,6 +341,21 @@ int main(int argc, char** argv)
           row.gapFrom[k], row.gapTo[k]);
       }
       std::printf("\n");
+    }
+  }
+  if (compositionSteps)
+  {
+    std::printf("\nThe composition's steps (seconds, medians; sweeps of the last run): "
+                "interpolation, untangling, sweeps at the samples' scale (the disk's), per-vertex "
+                "sweeps (with the polishing)\n\n"
+                "| mesh | vertices | interpolation | untangling | sample-scale sweeps | s | "
+                "per-vertex sweeps | s | composition |\n"
+                "|---|---|---|---|---|---|---|---|---|\n");
+    for (const Steps& s : steps)
+    {
+      std::printf("| %s | %zu | %.3f | %.3f | %d | %.3f | %d | %.3f | %.3f |\n", s.mesh.c_str(),
+        s.points, s.interpolation, s.untangling, s.sampleScaleSweeps, s.sampleScale, s.sweeps,
+        s.perVertex, s.composition);
     }
   }
   return 0;

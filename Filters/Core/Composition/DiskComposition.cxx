@@ -306,6 +306,7 @@ CompositionResult composeWithInverseTransport(const SurfaceMesh& surface,
     result.uv.clear(); // an aborted run has no map
     return result;
   }
+  result.secondsSampleScale = seconds(start);
   if (options.correctAreas &&
     !correct(surface, boundaryLoop, stars, surfaceFraction, options, report, result))
   {

@@ -64,6 +64,7 @@ struct CompositionResult
   double secondsInterpolation = 0.0;
   double secondsUntangling = 0.0;
   double secondsCorrection = 0.0;
+  double secondsSampleScale = 0.0; // step 3a's part of secondsCorrection
 };
 
 // The middle of the longest run of a clipped power cell's boundary (closed polygon, arcs of
