@@ -6,7 +6,7 @@ again once the input is fixed. Abort leaves the outputs empty."""
 import math
 
 from bad_disk_inputs import (INF, NAN, SURFACE_CASES, collapsed_edge, good_disk,
-                             nearly_collapsed_edge, reversed_triangle,
+                             nearly_collapsed_edge, reversed_triangle, slit_disk, triangle_soup,
                              with_unreferenced_point)
 from otparam import vtkAreaPreservingParam
 from otparam_test_utils import (MessageRecorder, cell_lists, check, check_abort, check_failed_run,
@@ -89,9 +89,9 @@ check(out.GetNumberOfPoints() == surface.GetNumberOfPoints()
       and field_value(out, "FlippedTriangles") == 0 and field_value(out, "Converged") == 1,
       "fixed input: converged, every point, no flipped triangle")
 
-def map_after_clean(name, surface, tolerance, convert_polys_to_lines):
-    """The clean a message names, then the map: one point fewer, the two collapsed triangles
-    gone (as line cells, ignored, or dropped), converged with no flip."""
+def map_after_clean(name, surface, tolerance, convert_polys_to_lines, points, polys):
+    """The clean a message names, then the map: `points` points and `polys` triangles left,
+    converged with no flip."""
     clean = vtkCleanPolyData()
     clean.SetInputData(surface)
     clean.SetTolerance(tolerance)
@@ -102,15 +102,24 @@ def map_after_clean(name, surface, tolerance, convert_polys_to_lines):
     errors = MessageRecorder(param)
     param.Update()
     out = param.GetOutput()
-    check(not errors.messages and out.GetNumberOfPoints() == good_disk().GetNumberOfPoints() - 1
-          and out.GetNumberOfPolys() == good_disk().GetNumberOfPolys() - 2
+    check(not errors.messages and out.GetNumberOfPoints() == points
+          and out.GetNumberOfPolys() == polys
           and field_value(out, "FlippedTriangles") == 0 and field_value(out, "Converged") == 1,
-          f"{name} after vtkCleanPolyData: mapped ({errors.text()})")
+          f"{name} after vtkCleanPolyData: {points} points, {polys} triangles, mapped "
+          f"({errors.text()})")
 
 
-map_after_clean("coincident points", collapsed_edge(), 0.0, False)
+# The collapsed edges: one point fewer, the two collapsed triangles gone (as line cells,
+# ignored, or dropped).
+GRID_POINTS, GRID_TRIANGLES = good_disk().GetNumberOfPoints(), good_disk().GetNumberOfPolys()
+map_after_clean("coincident points", collapsed_edge(), 0.0, False, GRID_POINTS - 1,
+                GRID_TRIANGLES - 2)
+# The seam and the soup: the clean merges their points, and the grids map whole.
+map_after_clean("interior slit", slit_disk(), 0.0, False, 49, slit_disk().GetNumberOfPolys())
+map_after_clean("triangle soup", triangle_soup(), 0.0, False, GRID_POINTS, GRID_TRIANGLES)
 # With the clean's default ConvertPolysToLines: the collapsed triangles become line cells.
-map_after_clean("nearly coincident points, Tolerance 1e-6", nearly_collapsed_edge(), 1e-6, True)
+map_after_clean("nearly coincident points, Tolerance 1e-6", nearly_collapsed_edge(), 1e-6, True,
+                GRID_POINTS - 1, GRID_TRIANGLES - 2)
 
 # A point used by no triangle: the output keeps every input point, that one with NaN
 # coordinates, and the one warning says so (not the conformal stage's "left out").

@@ -173,6 +173,29 @@ def two_disks():
     return mesh(points, grid_triangles() + grid_triangles(offset=N * N))
 
 
+def triangle_soup():
+    """The good disk with no point shared: each triangle has its own three points (an STL file
+    read without merging its points)."""
+    points = grid_points()
+    soup = [points[v] for t in grid_triangles() for v in t]
+    return mesh(soup, [(3 * k, 3 * k + 1, 3 * k + 2) for k in range(len(soup) // 3)])
+
+
+def slit_disk(n=7):
+    """An n x n grid cut along the middle row's interior points but its two ends: the triangles
+    above the row use copies of those points (a seam whose points are not shared, as exports
+    split along texture seams), which makes the cut a second boundary loop of zero area."""
+    points, triangles = grid_points(n), grid_triangles(n)
+    row = n // 2
+    copy = {}
+    for i in range(2, n - 2):
+        copy[row * n + i] = len(points)
+        points.append(points[row * n + i])
+    above = [tuple(copy.get(v, v) for v in t) if sum(v // n for v in t) > 3 * row else t
+             for t in triangles]
+    return mesh(points, above)
+
+
 def zero_area():
     # Boundary edge (0, 1) of triangle 0 gets a second triangle (1, 0, m) with m its midpoint:
     # topologically still a disk, geometrically flat.
@@ -214,7 +237,12 @@ SURFACE_CASES = [
     ("three triangles on an edge", three_triangles_on_an_edge(), {},
      [("non-manifold", "same direction"), "triangles 11 and 32", "(6, 12)"]),
     ("disks touching at a vertex", touching_disks(), {}, ["non-manifold vertex", "point 24 "]),
-    ("two components", two_disks(), {}, ["2 connected components"]),
+    ("two components", two_disks(), {}, ["2 connected components", "keep the largest"]),
+    ("triangle soup", triangle_soup(), {},
+     ["32 connected components", "94 of its points lie exactly where another point is",
+      "vtkcleanpolydata"]),
+    ("interior slit", slit_disk(), {},
+     ["2 boundary loops", "is a slit, not a hole", "6 of its points", "vtkcleanpolydata"]),
     ("a quad", with_quad(), {}, ["triangle", "polygon id(s) 4 "]),
     ("triangle strip", add_cells(good_disk(), "Strips", [(0, 1, 5, 6)]), {},
      ["triangle", "1 triangle strips"]),

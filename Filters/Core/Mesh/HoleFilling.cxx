@@ -4,6 +4,8 @@
 #include <CGAL/Polygon_mesh_processing/triangulate_hole.h>
 #include <CGAL/Surface_mesh.h>
 
+#include <algorithm>
+#include <array>
 #include <iterator>
 #include <sstream>
 
@@ -62,7 +64,71 @@ Mesh::Halfedge_index borderHalfedge(const Mesh& mesh, const std::vector<int>& lo
   }
   return Mesh::null_halfedge();
 }
+// Per boundary point (loops' order): whether another boundary point has exactly its
+// coordinates.
+std::vector<std::vector<char>> coincidentOnBoundary(
+  const SurfaceMesh& mesh, const std::vector<std::vector<int>>& loops)
+{
+  std::vector<std::pair<std::array<double, 3>, std::pair<std::size_t, std::size_t>>> points;
+  std::vector<std::vector<char>> coincident(loops.size());
+  for (std::size_t k = 0; k < loops.size(); ++k)
+  {
+    coincident[k].assign(loops[k].size(), 0);
+    for (std::size_t i = 0; i < loops[k].size(); ++i)
+    {
+      const Vec3 p = mesh.points[loops[k][i]];
+      points.push_back({ { p.x, p.y, p.z }, { k, i } });
+    }
+  }
+  std::sort(points.begin(), points.end());
+  for (std::size_t i = 0; i + 1 < points.size(); ++i)
+  {
+    if (points[i].first == points[i + 1].first)
+    {
+      coincident[points[i].second.first][points[i].second.second] = 1;
+      coincident[points[i + 1].second.first][points[i + 1].second.second] = 1;
+    }
+  }
+  return coincident;
+}
+
+// "" or why loop k is no hole: a slit, most of its points lying exactly on other boundary
+// points (a seam whose points the triangles on its two sides do not share, as exports split
+// along texture seams). Filled, such a loop gets triangles of zero area (measured: a face
+// with a 99-point slit mapped with the transport stalled at relative error 3.6, mean |log area
+// ratio| 0.26).
+std::string slitInstead(
+  const std::vector<int>& loop, const std::vector<char>& coincident, std::size_t k)
+{
+  const auto count = static_cast<std::size_t>(std::count(coincident.begin(), coincident.end(), 1));
+  if (2 * count < loop.size())
+  {
+    return {};
+  }
+  std::ostringstream msg;
+  msg << "boundary loop " << k + 1 << " (" << loop.size() << " edges, through point " << loop[0]
+      << ") is a slit, not a hole: " << count
+      << " of its points lie exactly where other boundary points are, so the surface is split "
+         "along a seam whose points its triangles do not share (as exports split along texture "
+         "seams): merge them with vtkCleanPolyData (ParaView: Clean) first";
+  return msg.str();
+}
 } // namespace
+
+std::string slitAmongHoles(
+  const SurfaceMesh& mesh, const std::vector<std::vector<int>>& loops, std::size_t kept)
+{
+  const std::vector<std::vector<char>> coincident = coincidentOnBoundary(mesh, loops);
+  for (std::size_t k = 0; k < loops.size(); ++k)
+  {
+    const std::string slit = k == kept ? std::string() : slitInstead(loops[k], coincident[k], k);
+    if (!slit.empty())
+    {
+      return slit;
+    }
+  }
+  return {};
+}
 
 double largestHoleFraction(const SurfaceMesh& mesh, const std::vector<std::vector<int>>& loops)
 {
@@ -111,6 +177,11 @@ std::string fillHoles(const SurfaceMesh& mesh, const std::vector<std::vector<int
   std::size_t kept, FilledSurface& filled)
 {
   filled = FilledSurface();
+  const std::string slit = slitAmongHoles(mesh, loops, kept);
+  if (!slit.empty())
+  {
+    return slit;
+  }
   Mesh cgalMesh = toSurfaceMesh(mesh);
   for (std::size_t k = 0; k < loops.size(); ++k)
   {

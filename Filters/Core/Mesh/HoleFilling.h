@@ -22,6 +22,12 @@ struct FilledSurface
   double fillAreaFraction = 0.0; // the fill's share of the filled surface's area
 };
 
+// "" or the first loop but loops[kept] that is a slit rather than a hole (most of its points
+// exactly on other boundary points: a seam whose points are not shared), with what to do.
+// fillHoles checks it first.
+std::string slitAmongHoles(
+  const SurfaceMesh& mesh, const std::vector<std::vector<int>>& loops, std::size_t kept);
+
 // Index of the longest loop by surface (3D) length.
 std::size_t longestLoop(const SurfaceMesh& mesh, const std::vector<std::vector<int>>& loops);
 

@@ -4,6 +4,7 @@
 #include "Common/IdList.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -312,6 +313,29 @@ size_t countComponents(const SurfaceMesh& mesh)
   return count;
 }
 
+// Points whose coordinates another point has too (all copies counted).
+size_t countCoincidentPoints(const std::vector<Vec3>& points)
+{
+  std::vector<std::array<double, 3>> sorted(points.size());
+  std::transform(points.begin(), points.end(), sorted.begin(),
+    [](const Vec3& p) {
+      return std::array<double, 3>{ p.x, p.y, p.z };
+    });
+  std::sort(sorted.begin(), sorted.end());
+  size_t coincident = 0;
+  for (size_t i = 0; i < sorted.size();)
+  {
+    size_t j = i + 1;
+    while (j < sorted.size() && sorted[j] == sorted[i])
+    {
+      ++j;
+    }
+    coincident += j - i > 1 ? j - i : 0;
+    i = j;
+  }
+  return coincident;
+}
+
 // Boundary loops in the triangles' orientation: directed edges whose reverse is absent; with
 // manifold vertices each boundary vertex has exactly one outgoing boundary edge.
 std::vector<std::vector<int>> boundaryLoops(
@@ -376,6 +400,10 @@ std::string analyzeSurface(
     return error;
   }
   topology.components = countComponents(mesh);
+  if (topology.components > 1)
+  {
+    topology.coincidentPoints = countCoincidentPoints(mesh.points);
+  }
   size_t boundaryEdges = 0;
   topology.boundaryLoops = boundaryLoops(mesh, edges, boundaryEdges);
   const size_t numberOfEdges = (3 * mesh.triangles.size() + boundaryEdges) / 2;
@@ -386,10 +414,24 @@ std::string analyzeSurface(
 
 namespace
 {
-// What to try when a scan comes with debris (small separate pieces).
-constexpr const char* KeepLargestComponent =
-  " (to keep the largest: vtkPolyDataConnectivityFilter with SetExtractionModeToLargestRegion, "
-  "ParaView's Connectivity with Extraction Mode 'Extract Largest Region')";
+// What to try when a scan comes with debris (small separate pieces), or when its pieces are
+// triangles that touch without sharing their points (an STL file read without merging them,
+// an export split along its texture seams): there keeping the largest would keep a fragment.
+std::string whatJoinsTheComponents(const SurfaceTopology& topology)
+{
+  if (topology.coincidentPoints == 0)
+  {
+    return " (to keep the largest: vtkPolyDataConnectivityFilter with "
+           "SetExtractionModeToLargestRegion, ParaView's Connectivity with Extraction Mode "
+           "'Extract Largest Region')";
+  }
+  std::ostringstream msg;
+  msg << "; " << topology.coincidentPoints
+      << " of its points lie exactly where another point is, so its triangles touch without "
+         "sharing their points (a triangle soup, or a mesh split along seams): merge them with "
+         "vtkCleanPolyData (ParaView: Clean) first";
+  return msg.str();
+}
 } // namespace
 
 std::string checkDiskTopology(const SurfaceMesh& mesh, std::vector<int>& boundaryLoop,
@@ -410,7 +452,8 @@ std::string diskTopologyError(SurfaceTopology& topology, std::vector<int>& bound
   if (topology.components != 1)
   {
     msg << "the surface has " << topology.components
-        << " connected components; a disk-like surface needs exactly 1" << KeepLargestComponent;
+        << " connected components; a disk-like surface needs exactly 1"
+        << whatJoinsTheComponents(topology);
   }
   else if (loops == 0)
   {
@@ -452,7 +495,7 @@ std::string sphereTopologyError(const SurfaceTopology& topology)
   {
     msg << "the surface has " << topology.components
         << " connected components; the sphere needs exactly 1 (one closed surface of genus 0)"
-        << KeepLargestComponent;
+        << whatJoinsTheComponents(topology);
   }
   else if (loops > 0)
   {

@@ -43,6 +43,9 @@ struct SurfaceTopology
   size_t components = 0;
   std::vector<std::vector<int>> boundaryLoops; // each in the triangles' orientation
   long long eulerCharacteristic = 0;
+  // Points at exactly the coordinates of another point, counted when there is more than one
+  // component: triangles that touch without sharing their points (an unmerged soup).
+  size_t coincidentPoints = 0;
 };
 
 // Checks what every surface the pipelines take must be (finite coordinates, no degenerate

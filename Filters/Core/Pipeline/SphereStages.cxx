@@ -36,6 +36,12 @@ std::string closeHoles(const SurfaceTopology& topology, SphereConformalStage& st
         << "); FillHoles closes holes, but the sphere needs genus 0";
     return msg.str();
   }
+  const std::string slit =
+    slitAmongHoles(surface.mesh, topology.boundaryLoops, topology.boundaryLoops.size());
+  if (!slit.empty())
+  {
+    return msg.str() + ", and " + slit;
+  }
   const double largest = largestHoleFraction(surface.mesh, topology.boundaryLoops);
   if (largest > LargestSphereHole)
   {

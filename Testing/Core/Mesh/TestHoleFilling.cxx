@@ -154,6 +154,54 @@ TEST(HoleFilling, ClosesEveryLoopForTheSphere)
   EXPECT_EQ(checkSphereTopology(filled.mesh), "");
 }
 
+// A grid cut along its middle row (the triangles above it use copies of the row's inner points:
+// a seam whose points are not shared) has a second boundary loop of zero area: a slit, which
+// the fill refuses with what to do, instead of closing it with triangles of zero area.
+TEST(HoleFilling, RefusesASlit)
+{
+  constexpr int N = 9, Row = N / 2;
+  SurfaceMesh mesh;
+  for (int j = 0; j < N; ++j)
+  {
+    for (int i = 0; i < N; ++i)
+    {
+      mesh.points.push_back({ static_cast<double>(i), static_cast<double>(j), 0.0 });
+    }
+  }
+  std::vector<int> copy(N * N, -1);
+  for (int i = 2; i < N - 2; ++i)
+  {
+    copy[Row * N + i] = static_cast<int>(mesh.points.size());
+    mesh.points.push_back(mesh.points[Row * N + i]);
+  }
+  for (int j = 0; j + 1 < N; ++j)
+  {
+    for (int i = 0; i + 1 < N; ++i)
+    {
+      const int a = j * N + i, b = a + 1, c = a + N + 1, d = a + N;
+      for (Triangle t : { Triangle{ a, b, c }, Triangle{ a, c, d } })
+      {
+        for (int& v : t)
+        {
+          v = j >= Row && copy[v] >= 0 ? copy[v] : v; // the squares above the row
+        }
+        mesh.triangles.push_back(t);
+      }
+    }
+  }
+  SurfaceTopology topology;
+  ASSERT_EQ(analyzeSurface(mesh, topology), "");
+  ASSERT_EQ(topology.boundaryLoops.size(), 2u);
+  FilledSurface filled;
+  const std::string error = fillHolesButLongest(mesh, topology.boundaryLoops, filled);
+  EXPECT_NE(error.find("is a slit, not a hole: 10 of its points lie exactly where other "
+                       "boundary points are"),
+    std::string::npos)
+    << error;
+  EXPECT_NE(error.find("vtkCleanPolyData"), std::string::npos) << error;
+  EXPECT_EQ(slitAmongHoles(mesh, topology.boundaryLoops, 2), error);
+}
+
 // The largest hole's share measured by a round disk of its length: exact for a round hole in
 // a plane (up to the polygon's chords), 0 without a loop.
 TEST(HoleFilling, LargestHoleFractionOfARoundHole)
