@@ -181,10 +181,11 @@ def triangle_soup():
     return mesh(soup, [(3 * k, 3 * k + 1, 3 * k + 2) for k in range(len(soup) // 3)])
 
 
-def slit_disk(n=7):
+def slit_disk(n=7, unreferenced_first=False):
     """An n x n grid cut along the middle row's interior points but its two ends: the triangles
     above the row use copies of those points (a seam whose points are not shared, as exports
-    split along texture seams), which makes the cut a second boundary loop of zero area."""
+    split along texture seams), which makes the cut a second boundary loop of zero area.
+    `unreferenced_first`: a point used by no triangle first, which shifts every id by one."""
     points, triangles = grid_points(n), grid_triangles(n)
     row = n // 2
     copy = {}
@@ -193,6 +194,8 @@ def slit_disk(n=7):
         points.append(points[row * n + i])
     above = [tuple(copy.get(v, v) for v in t) if sum(v // n for v in t) > 3 * row else t
              for t in triangles]
+    if unreferenced_first:
+        return mesh([(5.0, 5.0, 5.0)] + points, [tuple(v + 1 for v in t) for t in above])
     return mesh(points, above)
 
 
@@ -242,7 +245,11 @@ SURFACE_CASES = [
      ["32 connected components", "94 of its points lie exactly where another point is",
       "vtkcleanpolydata"]),
     ("interior slit", slit_disk(), {},
-     ["2 boundary loops", "is a slit, not a hole", "6 of its points", "vtkcleanpolydata"]),
+     ["2 boundary loops", "through point 22) is a slit, not a hole", "6 of its points",
+      "vtkcleanpolydata"]),
+    # Ids in messages are input ids.
+    ("interior slit after an unreferenced point", slit_disk(unreferenced_first=True), {},
+     ["through point 23) is a slit, not a hole"]),
     ("a quad", with_quad(), {}, ["triangle", "polygon id(s) 4 "]),
     ("triangle strip", add_cells(good_disk(), "Strips", [(0, 1, 5, 6)]), {},
      ["triangle", "1 triangle strips"]),

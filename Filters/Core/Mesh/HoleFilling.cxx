@@ -97,8 +97,8 @@ std::vector<std::vector<char>> coincidentOnBoundary(
 // along texture seams). Filled, such a loop gets triangles of zero area (measured: a face
 // with a 99-point slit mapped with the transport stalled at relative error 3.6, mean |log area
 // ratio| 0.26).
-std::string slitInstead(
-  const std::vector<int>& loop, const std::vector<char>& coincident, std::size_t k)
+std::string slitInstead(const std::vector<int>& loop, const std::vector<char>& coincident,
+  std::size_t k, std::int64_t firstPoint)
 {
   const auto count = static_cast<std::size_t>(std::count(coincident.begin(), coincident.end(), 1));
   if (2 * count < loop.size())
@@ -106,22 +106,28 @@ std::string slitInstead(
     return {};
   }
   std::ostringstream msg;
-  msg << "boundary loop " << k + 1 << " (" << loop.size() << " edges, through point " << loop[0]
+  msg << "boundary loop " << k + 1 << " (" << loop.size() << " edges, through point " << firstPoint
       << ") is a slit, not a hole: " << count
       << " of its points lie exactly where other boundary points are, so the surface is split "
          "along a seam whose points its triangles do not share (as exports split along texture "
          "seams): merge them with vtkCleanPolyData (ParaView: Clean) first";
   return msg.str();
 }
+std::int64_t reported(int v, const std::vector<std::int64_t>* reportedIds)
+{
+  return reportedIds ? (*reportedIds)[v] : v;
+}
 } // namespace
 
-std::string slitAmongHoles(
-  const SurfaceMesh& mesh, const std::vector<std::vector<int>>& loops, std::size_t kept)
+std::string slitAmongHoles(const SurfaceMesh& mesh, const std::vector<std::vector<int>>& loops,
+  std::size_t kept, const std::vector<std::int64_t>* reportedIds)
 {
   const std::vector<std::vector<char>> coincident = coincidentOnBoundary(mesh, loops);
   for (std::size_t k = 0; k < loops.size(); ++k)
   {
-    const std::string slit = k == kept ? std::string() : slitInstead(loops[k], coincident[k], k);
+    const std::string slit = k == kept
+      ? std::string()
+      : slitInstead(loops[k], coincident[k], k, reported(loops[k][0], reportedIds));
     if (!slit.empty())
     {
       return slit;
@@ -161,11 +167,11 @@ std::size_t longestLoop(const SurfaceMesh& mesh, const std::vector<std::vector<i
   return longest;
 }
 
-std::string fillHolesButLongest(
-  const SurfaceMesh& mesh, const std::vector<std::vector<int>>& loops, FilledSurface& filled)
+std::string fillHolesButLongest(const SurfaceMesh& mesh, const std::vector<std::vector<int>>& loops,
+  FilledSurface& filled, const std::vector<std::int64_t>* reportedIds)
 {
   const std::size_t kept = longestLoop(mesh, loops);
-  const std::string error = fillHoles(mesh, loops, kept, filled);
+  const std::string error = fillHoles(mesh, loops, kept, filled, reportedIds);
   if (error.empty())
   {
     filled.boundaryLoop = loops[kept];
@@ -174,10 +180,10 @@ std::string fillHolesButLongest(
 }
 
 std::string fillHoles(const SurfaceMesh& mesh, const std::vector<std::vector<int>>& loops,
-  std::size_t kept, FilledSurface& filled)
+  std::size_t kept, FilledSurface& filled, const std::vector<std::int64_t>* reportedIds)
 {
   filled = FilledSurface();
-  const std::string slit = slitAmongHoles(mesh, loops, kept);
+  const std::string slit = slitAmongHoles(mesh, loops, kept, reportedIds);
   if (!slit.empty())
   {
     return slit;
@@ -202,7 +208,8 @@ std::string fillHoles(const SurfaceMesh& mesh, const std::vector<std::vector<int
     {
       std::ostringstream msg;
       msg << "the hole along boundary loop " << k + 1 << " (" << loops[k].size()
-          << " edges, through point " << loops[k][0] << ") could not be closed";
+          << " edges, through point " << reported(loops[k][0], reportedIds)
+          << ") could not be closed";
       return msg.str();
     }
     ++filled.filledHoles;

@@ -22,11 +22,14 @@ struct FilledSurface
   double fillAreaFraction = 0.0; // the fill's share of the filled surface's area
 };
 
+// The messages below name points by `reportedIds[v]` when given (the input's ids of a mesh
+// compacted of its unreferenced points), else by their index.
+
 // "" or the first loop but loops[kept] that is a slit rather than a hole (most of its points
 // exactly on other boundary points: a seam whose points are not shared), with what to do.
 // fillHoles checks it first.
-std::string slitAmongHoles(
-  const SurfaceMesh& mesh, const std::vector<std::vector<int>>& loops, std::size_t kept);
+std::string slitAmongHoles(const SurfaceMesh& mesh, const std::vector<std::vector<int>>& loops,
+  std::size_t kept, const std::vector<std::int64_t>* reportedIds = nullptr);
 
 // Index of the longest loop by surface (3D) length.
 std::size_t longestLoop(const SurfaceMesh& mesh, const std::vector<std::vector<int>>& loops);
@@ -41,13 +44,13 @@ double largestHoleFraction(const SurfaceMesh& mesh, const std::vector<std::vecto
 // `loops` (as analyzeSurface reports them). Closes every loop but the longest with CGAL's
 // hole filling (triangulate, refine to the rim's edge lengths, fair), and returns "" or a
 // message naming the hole that could not be closed.
-std::string fillHolesButLongest(
-  const SurfaceMesh& mesh, const std::vector<std::vector<int>>& loops, FilledSurface& filled);
+std::string fillHolesButLongest(const SurfaceMesh& mesh, const std::vector<std::vector<int>>& loops,
+  FilledSurface& filled, const std::vector<std::int64_t>* reportedIds = nullptr);
 
 // The same closing every loop but loops[kept] (kept >= loops.size(): every loop, which makes a
 // genus-0 surface closed).
 std::string fillHoles(const SurfaceMesh& mesh, const std::vector<std::vector<int>>& loops,
-  std::size_t kept, FilledSurface& filled);
+  std::size_t kept, FilledSurface& filled, const std::vector<std::int64_t>* reportedIds = nullptr);
 
 } // namespace otparam
 

@@ -99,7 +99,8 @@ std::string makeDisk(
       return msg.str();
     }
     FilledSurface filled;
-    error = fillHolesButLongest(surface.mesh, topology.boundaryLoops, filled);
+    error =
+      fillHolesButLongest(surface.mesh, topology.boundaryLoops, filled, &surface.originalPointIds);
     if (!error.empty())
     {
       return msg.str() + ", and " + error;

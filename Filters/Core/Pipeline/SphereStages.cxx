@@ -36,8 +36,8 @@ std::string closeHoles(const SurfaceTopology& topology, SphereConformalStage& st
         << "); FillHoles closes holes, but the sphere needs genus 0";
     return msg.str();
   }
-  const std::string slit =
-    slitAmongHoles(surface.mesh, topology.boundaryLoops, topology.boundaryLoops.size());
+  const std::string slit = slitAmongHoles(
+    surface.mesh, topology.boundaryLoops, topology.boundaryLoops.size(), &surface.originalPointIds);
   if (!slit.empty())
   {
     return msg.str() + ", and " + slit;
@@ -52,8 +52,8 @@ std::string closeHoles(const SurfaceTopology& topology, SphereConformalStage& st
     return msg.str();
   }
   FilledSurface filled;
-  const std::string fillError =
-    fillHoles(surface.mesh, topology.boundaryLoops, topology.boundaryLoops.size(), filled);
+  const std::string fillError = fillHoles(surface.mesh, topology.boundaryLoops,
+    topology.boundaryLoops.size(), filled, &surface.originalPointIds);
   if (!fillError.empty())
   {
     return msg.str() + ", and " + fillError;
