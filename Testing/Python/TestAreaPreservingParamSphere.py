@@ -145,17 +145,27 @@ check(field_value(f.GetOutput(), "Domain") == 1 and "boundary loop is small" in 
       and "domain sphere" in warnings.text().lower(),
       f"spot with a hole, Domain Disk: a warning names the small boundary ({warnings.text()})")
 
-def pyramid(n, height):
+def pyramid(n, height, slit=False):
     """An n x n grid of unit squares and an apex `height` above its centre joined to its rim by
     thin triangles: its base corners are points of three triangles, one cotangent weight
-    negative (Testing/Core/SphereMeshes.h, pyramidMesh)."""
+    negative (Testing/Core/SphereMeshes.h, pyramidMesh). `slit`: the squares beyond the middle
+    row use copies of its points but its two ends (an unmerged seam, a boundary loop of zero
+    area)."""
     index = lambda i, j: i * (n + 1) + j
     points = [(float(i), float(j), 0.0) for i in range(n + 1) for j in range(n + 1)]
+    copy = {}
+    if slit:
+        for j in range(2, n - 1):
+            copy[index(n // 2, j)] = len(points)
+            points.append(points[index(n // 2, j)])
     triangles = []
     for i in range(n):
         for j in range(n):
             a, b, c, d = index(i, j), index(i + 1, j), index(i + 1, j + 1), index(i, j + 1)
-            triangles += [(a, c, b), (a, d, c)] if (i + j) % 2 else [(a, d, b), (b, d, c)]
+            square = [(a, c, b), (a, d, c)] if (i + j) % 2 else [(a, d, b), (b, d, c)]
+            if i >= n // 2:
+                square = [tuple(copy.get(v, v) for v in t) for t in square]
+            triangles += square
     rim = ([index(i, 0) for i in range(n)] + [index(n, j) for j in range(n)]
            + [index(i, n) for i in range(n, 0, -1)] + [index(0, j) for j in range(n, 0, -1)])
     points.append((n / 2, n / 2, height))
@@ -266,4 +276,11 @@ p2, t2 = octahedron((5.0, 0.0, 0.0))
 check_refused("two spheres", make_domain(p1 + p2, t1 + [tuple(v + 6 for v in t) for t in t2]),
               ["component"])
 check_refused("Domain 7", spot, ["domain"], Domain=7)
+# A closed surface split along a seam inside (a slit, not a hole): merge its points, with or
+# without FillHoles (before, the fill closed it with triangles of zero area, and without
+# FillHoles the message said to use the Disk domain).
+for fill in (1, 0):
+    check_refused(f"closed surface with a slit, FillHoles {fill}", pyramid(8, 4.0, slit=True),
+                  ["1 boundary loop, and boundary loop 1", "is a slit, not a hole",
+                   "vtkcleanpolydata"], Domain=2, FillHoles=fill)
 finish()

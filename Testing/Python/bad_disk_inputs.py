@@ -247,6 +247,8 @@ SURFACE_CASES = [
     ("interior slit", slit_disk(), {},
      ["2 boundary loops", "through point 22) is a slit, not a hole", "6 of its points",
       "vtkcleanpolydata"]),
+    ("interior slit without FillHoles", slit_disk(), {"FillHoles": 0},
+     ["2 boundary loops, and boundary loop 2", "is a slit, not a hole", "vtkcleanpolydata"]),
     # Ids in messages are input ids.
     ("interior slit after an unreferenced point", slit_disk(unreferenced_first=True), {},
      ["through point 23) is a slit, not a hole"]),

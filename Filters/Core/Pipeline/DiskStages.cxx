@@ -89,8 +89,12 @@ std::string makeDisk(
     msg << "the surface has " << loops << " boundary loops";
     if (!options.fillHoles)
     {
+      const std::string slit = slitAmongHoles(surface.mesh, topology.boundaryLoops,
+        longestLoop(surface.mesh, topology.boundaryLoops), &surface.originalPointIds);
       return msg.str() +
-        "; a disk-like surface needs exactly 1 (turn FillHoles on to close all but the longest)";
+        (slit.empty() ? "; a disk-like surface needs exactly 1 (turn FillHoles on to close all "
+                        "but the longest)"
+                      : ", and " + slit);
     }
     if (genus != 0)
     {

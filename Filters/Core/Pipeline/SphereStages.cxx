@@ -61,6 +61,21 @@ std::string closeHoles(const SurfaceTopology& topology, SphereConformalStage& st
   adoptHoleFill(stage, std::move(filled));
   return {};
 }
+// Without FillHoles: "" or, when a boundary loop is a slit (an unmerged seam), what merges it
+// (sphereTopologyError would say to use the Disk domain).
+std::string slitInstead(const SurfaceTopology& topology, const SphereConformalStage& stage)
+{
+  const std::size_t loops = topology.boundaryLoops.size();
+  if (loops == 0 || topology.components != 1)
+  {
+    return {};
+  }
+  const std::string slit = slitAmongHoles(
+    stage.surface.mesh, topology.boundaryLoops, loops, &stage.surface.originalPointIds);
+  return slit.empty() ? slit
+                      : "the surface has " + std::to_string(loops) + " boundary loop" +
+      (loops > 1 ? "s" : "") + ", and " + slit;
+}
 } // namespace
 
 SphereConformalStage runSphereConformalStage(
@@ -76,7 +91,7 @@ SphereConformalStage runSphereConformalStage(
   {
     return stage;
   }
-  std::string error = fillHoles ? closeHoles(topology, stage) : std::string();
+  std::string error = fillHoles ? closeHoles(topology, stage) : slitInstead(topology, stage);
   if (error.empty())
   {
     // A filled surface is checked anew (its fill too must be a valid mesh).
