@@ -5,7 +5,6 @@
 #include <CGAL/Surface_mesh.h>
 
 #include <algorithm>
-#include <array>
 #include <iterator>
 #include <sstream>
 
@@ -69,25 +68,18 @@ Mesh::Halfedge_index borderHalfedge(const Mesh& mesh, const std::vector<int>& lo
 std::vector<std::vector<char>> coincidentOnBoundary(
   const SurfaceMesh& mesh, const std::vector<std::vector<int>>& loops)
 {
-  std::vector<std::pair<std::array<double, 3>, std::pair<std::size_t, std::size_t>>> points;
-  std::vector<std::vector<char>> coincident(loops.size());
-  for (std::size_t k = 0; k < loops.size(); ++k)
+  std::vector<int> boundary;
+  for (const std::vector<int>& loop : loops)
   {
-    coincident[k].assign(loops[k].size(), 0);
-    for (std::size_t i = 0; i < loops[k].size(); ++i)
-    {
-      const Vec3 p = mesh.points[loops[k][i]];
-      points.push_back({ { p.x, p.y, p.z }, { k, i } });
-    }
+    boundary.insert(boundary.end(), loop.begin(), loop.end());
   }
-  std::sort(points.begin(), points.end());
-  for (std::size_t i = 0; i + 1 < points.size(); ++i)
+  const std::vector<char> flags = coincidentAmong(mesh.points, boundary);
+  std::vector<std::vector<char>> coincident;
+  auto next = flags.begin();
+  for (const std::vector<int>& loop : loops)
   {
-    if (points[i].first == points[i + 1].first)
-    {
-      coincident[points[i].second.first][points[i].second.second] = 1;
-      coincident[points[i + 1].second.first][points[i + 1].second.second] = 1;
-    }
+    coincident.emplace_back(next, next + static_cast<std::ptrdiff_t>(loop.size()));
+    next += static_cast<std::ptrdiff_t>(loop.size());
   }
   return coincident;
 }

@@ -316,24 +316,10 @@ size_t countComponents(const SurfaceMesh& mesh)
 // Points whose coordinates another point has too (all copies counted).
 size_t countCoincidentPoints(const std::vector<Vec3>& points)
 {
-  std::vector<std::array<double, 3>> sorted(points.size());
-  std::transform(points.begin(), points.end(), sorted.begin(),
-    [](const Vec3& p) {
-      return std::array<double, 3>{ p.x, p.y, p.z };
-    });
-  std::sort(sorted.begin(), sorted.end());
-  size_t coincident = 0;
-  for (size_t i = 0; i < sorted.size();)
-  {
-    size_t j = i + 1;
-    while (j < sorted.size() && sorted[j] == sorted[i])
-    {
-      ++j;
-    }
-    coincident += j - i > 1 ? j - i : 0;
-    i = j;
-  }
-  return coincident;
+  std::vector<int> all(points.size());
+  std::iota(all.begin(), all.end(), 0);
+  const std::vector<char> coincident = coincidentAmong(points, all);
+  return static_cast<size_t>(std::count(coincident.begin(), coincident.end(), 1));
 }
 
 // Boundary loops in the triangles' orientation: directed edges whose reverse is absent; with
@@ -374,6 +360,28 @@ std::vector<std::vector<int>> boundaryLoops(
   return loops;
 }
 } // namespace
+
+std::vector<char> coincidentAmong(const std::vector<Vec3>& points, const std::vector<int>& ids)
+{
+  auto coordinates = [&](size_t k)
+  {
+    const Vec3 p = points[ids[k]];
+    return std::array<double, 3>{ p.x, p.y, p.z };
+  };
+  std::vector<size_t> order(ids.size());
+  std::iota(order.begin(), order.end(), size_t(0));
+  std::sort(order.begin(), order.end(),
+    [&](size_t a, size_t b) { return coordinates(a) < coordinates(b); });
+  std::vector<char> coincident(ids.size(), 0);
+  for (size_t i = 0; i + 1 < order.size(); ++i)
+  {
+    if (coordinates(order[i]) == coordinates(order[i + 1]))
+    {
+      coincident[order[i]] = coincident[order[i + 1]] = 1;
+    }
+  }
+  return coincident;
+}
 
 std::string analyzeSurface(
   const SurfaceMesh& mesh, SurfaceTopology& topology, const std::vector<std::int64_t>* reportedIds)

@@ -48,6 +48,10 @@ struct SurfaceTopology
   size_t coincidentPoints = 0;
 };
 
+// Per entry of `ids`: whether another entry names a point at exactly the same coordinates (the
+// points of a triangle soup, or of a seam whose two sides do not share them).
+std::vector<char> coincidentAmong(const std::vector<Vec3>& points, const std::vector<int>& ids);
+
 // Checks what every surface the pipelines take must be (finite coordinates, no degenerate
 // triangles, manifold and consistently oriented, no unreferenced point) and, when it is,
 // reports its components, boundary loops and Euler characteristic; "" or the message (ids

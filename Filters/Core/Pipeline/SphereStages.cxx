@@ -17,6 +17,22 @@ namespace
 // flat disk closed by its fill mapped with a mean |log area ratio| of 0.76.
 constexpr double LargestSphereHole = 0.1;
 
+// "" or, when a boundary loop is a slit (an unmerged seam), what merges it: checked before the
+// holes' size (and without FillHoles, where sphereTopologyError would say to use the Disk domain).
+std::string slitMessage(const SurfaceTopology& topology, const SphereConformalStage& stage)
+{
+  const std::size_t loops = topology.boundaryLoops.size();
+  if (loops == 0 || topology.components != 1)
+  {
+    return {};
+  }
+  const std::string slit = slitAmongHoles(
+    stage.surface.mesh, topology.boundaryLoops, loops, &stage.surface.originalPointIds);
+  return slit.empty() ? slit
+                      : "the surface has " + std::to_string(loops) + " boundary loop" +
+      (loops > 1 ? "s" : "") + ", and " + slit;
+}
+
 // A connected genus-0 surface, analyzed into `topology`, with boundary loops closed by filling
 // every hole; "" or what stops it. A closed surface is left as it is.
 std::string closeHoles(const SurfaceTopology& topology, SphereConformalStage& stage)
@@ -36,11 +52,10 @@ std::string closeHoles(const SurfaceTopology& topology, SphereConformalStage& st
         << "); FillHoles closes holes, but the sphere needs genus 0";
     return msg.str();
   }
-  const std::string slit = slitAmongHoles(
-    surface.mesh, topology.boundaryLoops, topology.boundaryLoops.size(), &surface.originalPointIds);
+  const std::string slit = slitMessage(topology, stage);
   if (!slit.empty())
   {
-    return msg.str() + ", and " + slit;
+    return slit;
   }
   const double largest = largestHoleFraction(surface.mesh, topology.boundaryLoops);
   if (largest > LargestSphereHole)
@@ -61,21 +76,6 @@ std::string closeHoles(const SurfaceTopology& topology, SphereConformalStage& st
   adoptHoleFill(stage, std::move(filled));
   return {};
 }
-// Without FillHoles: "" or, when a boundary loop is a slit (an unmerged seam), what merges it
-// (sphereTopologyError would say to use the Disk domain).
-std::string slitInstead(const SurfaceTopology& topology, const SphereConformalStage& stage)
-{
-  const std::size_t loops = topology.boundaryLoops.size();
-  if (loops == 0 || topology.components != 1)
-  {
-    return {};
-  }
-  const std::string slit = slitAmongHoles(
-    stage.surface.mesh, topology.boundaryLoops, loops, &stage.surface.originalPointIds);
-  return slit.empty() ? slit
-                      : "the surface has " + std::to_string(loops) + " boundary loop" +
-      (loops > 1 ? "s" : "") + ", and " + slit;
-}
 } // namespace
 
 SphereConformalStage runSphereConformalStage(
@@ -91,7 +91,7 @@ SphereConformalStage runSphereConformalStage(
   {
     return stage;
   }
-  std::string error = fillHoles ? closeHoles(topology, stage) : slitInstead(topology, stage);
+  std::string error = fillHoles ? closeHoles(topology, stage) : slitMessage(topology, stage);
   if (error.empty())
   {
     // A filled surface is checked anew (its fill too must be a valid mesh).
