@@ -11,6 +11,7 @@
 #include "Common/Geometry.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <numeric>
@@ -74,6 +75,20 @@ public:
     {
       this->maximize(0, lo, hi, best, consider, mayMeet);
     }
+  }
+
+  // The item nearest to x, by `distance(item)` (never below the distance from x to the item's
+  // box), the lowest id among equals as a scan in id order finds it; -1 for an empty tree.
+  template <typename Distance>
+  int nearest(Vec2 x, const Distance& distance) const
+  {
+    int best = -1;
+    double bestDistance = std::numeric_limits<double>::infinity();
+    if (!this->Nodes.empty())
+    {
+      this->nearest(0, x, distance, best, bestDistance);
+    }
+    return best;
   }
 
 private:
@@ -242,6 +257,55 @@ private:
     }
     this->maximize(first, lo, hi, best, consider, mayMeet);
     this->maximize(second, lo, hi, best, consider, mayMeet);
+  }
+
+  // Distance from x to the box, lowered by more than the rounding of the coordinates involved
+  // (a point computed on an item may stick out of its box by that much): the boxes prune only
+  // what is surely farther.
+  static double boxDistance(const Node& node, Vec2 x)
+  {
+    const double dx = std::max({ node.lo.x - x.x, 0.0, x.x - node.hi.x });
+    const double dy = std::max({ node.lo.y - x.y, 0.0, x.y - node.hi.y });
+    const double magnitude = std::abs(x.x) + std::abs(x.y) + std::abs(node.lo.x) +
+      std::abs(node.lo.y) + std::abs(node.hi.x) + std::abs(node.hi.y);
+    return (1.0 - 1e-12) * std::sqrt(dx * dx + dy * dy) - 1e-14 * magnitude;
+  }
+
+  template <typename Distance>
+  void nearest(int index, Vec2 x, const Distance& distance, int& best, double& bestDistance) const
+  {
+    const Node& node = this->Nodes[index];
+    if (node.left < 0)
+    {
+      for (int k = node.begin; k < node.end; ++k)
+      {
+        const int id = this->Order[k];
+        const double d = distance(id);
+        if (d < bestDistance || (d == bestDistance && id < best))
+        {
+          best = id;
+          bestDistance = d;
+        }
+      }
+      return;
+    }
+    // The nearer subtree first: it lowers bestDistance sooner, pruning more.
+    int first = node.left, second = node.right;
+    double firstDistance = boxDistance(this->Nodes[first], x);
+    double secondDistance = boxDistance(this->Nodes[second], x);
+    if (secondDistance < firstDistance)
+    {
+      std::swap(first, second);
+      std::swap(firstDistance, secondDistance);
+    }
+    if (firstDistance <= bestDistance)
+    {
+      this->nearest(first, x, distance, best, bestDistance);
+    }
+    if (secondDistance <= bestDistance)
+    {
+      this->nearest(second, x, distance, best, bestDistance);
+    }
   }
 
   std::vector<Item> Items;

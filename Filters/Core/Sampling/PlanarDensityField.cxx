@@ -332,6 +332,19 @@ void DensityField::buildSearchTrees()
     }
     this->PointTree = BoxTree(std::move(pointBoxes));
   }
+  this->BoundaryEdges.clear();
+  std::vector<BoxTree::Item> edgeBoxes;
+  for (const std::vector<Vec2>& loop : this->Loops)
+  {
+    for (size_t k = 0; k < loop.size(); ++k)
+    {
+      const Vec2 a = loop[k], b = loop[(k + 1) % loop.size()];
+      this->BoundaryEdges.emplace_back(a, b);
+      edgeBoxes.push_back({ { std::min(a.x, b.x), std::min(a.y, b.y) },
+        { std::max(a.x, b.x), std::max(a.y, b.y) }, 0.0 });
+    }
+  }
+  this->BoundaryTree = BoxTree(std::move(edgeBoxes));
 }
 
 int DensityField::locate(Vec2 x) const
@@ -444,24 +457,23 @@ bool DensityField::checkLoopsDoNotCross(
   return false;
 }
 
+// A search over the boundary's edges, not a scan: points outside the domain are common in the
+// sampler's refinement near the circle, and a scan of every edge took ~0.15 s of the sampling at
+// 273k points. The same point as the scan in the loops' order (the lowest edge among equals).
 Vec2 DensityField::nearestBoundaryPoint(Vec2 x) const
 {
-  Vec2 best = Hull.front();
-  double bestDistance = std::numeric_limits<double>::infinity();
-  for (const std::vector<Vec2>& loop : Loops)
-  {
-    for (size_t k = 0; k < loop.size(); ++k)
+  const int edge = this->BoundaryTree.nearest(x,
+    [&](int e)
     {
-      const Vec2 p = closestOnSegment(x, loop[k], loop[(k + 1) % loop.size()]);
-      const double d = norm(p - x);
-      if (d < bestDistance)
-      {
-        bestDistance = d;
-        best = p;
-      }
-    }
+      const auto& [a, b] = this->BoundaryEdges[e];
+      return norm(closestOnSegment(x, a, b) - x);
+    });
+  if (edge < 0)
+  {
+    return Hull.front();
   }
-  return best;
+  const auto& [a, b] = this->BoundaryEdges[edge];
+  return closestOnSegment(x, a, b);
 }
 
 bool DensityField::contains(Vec2 x) const

@@ -91,6 +91,9 @@ private:
   BoxTree TriangleTree;          // item = triangle, value = PerTriangle (0 if per point)
   BoxTree PointTree;             // per-point densities only: item = used point
   std::vector<int> PointTreeIds; // point id of each PointTree item
+  // The boundary loops' edges, in the loops' order (item = edge, for nearestBoundaryPoint).
+  BoxTree BoundaryTree;
+  std::vector<std::pair<Vec2, Vec2>> BoundaryEdges;
 };
 
 } // namespace otparam
