@@ -306,9 +306,12 @@ private:
       const bool forward = p.x < q.x || (p.x == q.x && p.y < q.y);
       const PreciseVec2 pp = precise(cell, k), pq = precise(cell, k1);
       const PreciseVec2 a = forward ? pp : pq, b = forward ? pq : pp;
-      PreciseVec2 ca, cb;
-      bool aOut, bOut;
-      if (!segmentInsideUnitDisk(a, b, ca, cb, aOut, bOut))
+      PreciseVec2 ca = a, cb = b;
+      bool aOut = false, bOut = false;
+      // An edge whose ends are both clearly inside lies inside (the disk is convex): what
+      // segmentInsideUnitDisk returns for it, without its long double roots (most cells).
+      const bool inside = dot(p, p) < 1.0 - 1e-9 && dot(q, q) < 1.0 - 1e-9;
+      if (!inside && !segmentInsideUnitDisk(a, b, ca, cb, aOut, bOut))
       {
         continue;
       }
