@@ -155,7 +155,9 @@ public:
     out.mass = 0.0;
     out.moment = { 0.0, 0.0 };
     out.edgeMass.clear();
-    std::vector<ChordPiece> pieces;
+    // One buffer per thread: a cell's pieces were an allocation per cell and evaluation.
+    thread_local std::vector<ChordPiece> pieces;
+    pieces.clear();
     chordPieces(cell, pieces);
     if (pieces.empty())
     {
