@@ -18,7 +18,10 @@ from vtkmodules.util.numpy_support import vtk_to_numpy
 # rest of the surface squeezed by the conformal map's balancing against the finger): the stages
 # run again from a start rebalanced for that stage (40: 3 stages, 50: 5; 52 fails from the
 # first offset, 0.3, and maps from the second, 0.15), and where those fail too, with every stage
-# clamped to 1e3 instead of 1e10 (54: 9 stages).
+# clamped to 1e3 instead of 1e10 (54: 9 stages). Which of those attempts succeeds, and so the
+# stage count from 50 on, follows the last bits of the arithmetic: the same code took 5 and 9
+# stages on an Intel machine and 3 and 10 on an AMD EPYC one (OpenBLAS's kernels differ), so
+# there only staging is asserted; the map's figures are.
 for length, stages, area in ((10, 0, 0.03), (20, 1, 0.03), (30, 2, 0.03), (36, 2, 0.04),
                              (40, 3, 0.04), (50, 5, 0.045), (52, 4, 0.045), (54, 9, 0.045)):
     fig, errors, warnings = run(length, closed=True)
@@ -34,8 +37,10 @@ for length, stages, area in ((10, 0, 0.03), (20, 1, 0.03), (30, 2, 0.03), (36, 2
           f"closed, L/rho {length}: no error, {'only the conformal fold' if folds else 'no'} "
           f"warning ({errors.text()}{warnings.text()})")
     check(fig["Domain"] == 2 and fig["Converged"] == 1 and fig["FlippedTriangles"] == 0
-          and fig["MeanAbsLogAreaRatio"] <= area and fig["TransportStages"] == stages,
-          f"closed, L/rho {length}: on the sphere, converged, no flip, {stages} staged "
+          and fig["MeanAbsLogAreaRatio"] <= area
+          and (fig["TransportStages"] == stages if length < 50 else fig["TransportStages"] >= 1),
+          f"closed, L/rho {length}: on the sphere, converged, no flip, "
+          f"{stages if length < 50 else 'some'} staged "
           f"transport(s), mean |log area ratio| <= {area} ({fig})")
 # The same closed finger scanned with two holes (a triangle cut out near the tip and one on the
 # half sphere): filled for the sphere and staged at once.

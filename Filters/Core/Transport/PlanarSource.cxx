@@ -86,6 +86,13 @@ bool segmentInsideUnitDisk(
   return true;
 }
 
+// segmentInsideUnitDisk's first test, alone: pq has no direction (a zero-length cell edge).
+bool isPoint(PreciseVec2 p, PreciseVec2 q)
+{
+  const long double dx = q.x - p.x, dy = q.y - p.y;
+  return dx * dx + dy * dy == 0.0L;
+}
+
 // theta - sin(theta), accurate for small angles (circular segments of tiny cells).
 double thetaMinusSin(double theta)
 {
@@ -311,9 +318,10 @@ private:
       PreciseVec2 ca = a, cb = b;
       bool aOut = false, bOut = false;
       // An edge whose ends are both clearly inside lies inside (the disk is convex): what
-      // segmentInsideUnitDisk returns for it, without its long double roots (most cells).
+      // segmentInsideUnitDisk returns for it, without its long double roots (most cells),
+      // including that an edge of zero length is no piece.
       const bool inside = dot(p, p) < 1.0 - 1e-9 && dot(q, q) < 1.0 - 1e-9;
-      if (!inside && !segmentInsideUnitDisk(a, b, ca, cb, aOut, bOut))
+      if (inside ? isPoint(a, b) : !segmentInsideUnitDisk(a, b, ca, cb, aOut, bOut))
       {
         continue;
       }
