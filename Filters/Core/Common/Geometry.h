@@ -2,6 +2,7 @@
 #ifndef OTPARAM_COMMON_GEOMETRY_H
 #define OTPARAM_COMMON_GEOMETRY_H
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <vector>
@@ -38,6 +39,13 @@ inline double cross(Vec2 a, Vec2 b)
 inline double norm(Vec2 a)
 {
   return std::hypot(a.x, a.y);
+}
+// The point of segment ab nearest to x (a and b distinct).
+inline Vec2 closestOnSegment(Vec2 x, Vec2 a, Vec2 b)
+{
+  const Vec2 d = b - a;
+  const double t = std::clamp(dot(x - a, d) / dot(d, d), 0.0, 1.0);
+  return a + t * d;
 }
 
 struct Vec3

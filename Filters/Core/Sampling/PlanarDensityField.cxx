@@ -36,13 +36,6 @@ bool inside(Vec2 x, Vec2 a, Vec2 b, Vec2 c, double slack)
   const auto l = barycentric(x, a, b, c);
   return l[0] >= -slack && l[1] >= -slack && l[2] >= -slack;
 }
-
-Vec2 closestOnSegment(Vec2 x, Vec2 a, Vec2 b)
-{
-  const Vec2 d = b - a;
-  const double t = std::clamp(dot(x - a, d) / dot(d, d), 0.0, 1.0);
-  return a + t * d;
-}
 } // namespace
 
 namespace

@@ -35,6 +35,13 @@ struct ChordPiece
   bool exits;  // b is on the circle
 };
 
+// pq has no direction (a zero-length cell edge): no piece of it is inside.
+bool isPoint(PreciseVec2 p, PreciseVec2 q)
+{
+  const long double dx = q.x - p.x, dy = q.y - p.y;
+  return dx * dx + dy * dy == 0.0L;
+}
+
 // Part of segment p->q inside the unit disk: the points where it enters (pIn) and leaves (qIn),
 // each p or q itself when that end lies inside. Each crossing is measured from the nearer end:
 // cell edges reach power vertices ~100 away (nearly flat faces by the hull), and a crossing
@@ -44,12 +51,12 @@ bool segmentInsideUnitDisk(
   PreciseVec2 p, PreciseVec2 q, PreciseVec2& pIn, PreciseVec2& qIn, bool& pOut, bool& qOut)
 {
   using LD = long double;
-  const LD dx = q.x - p.x, dy = q.y - p.y;
-  const LD a = dx * dx + dy * dy;
-  if (a == 0.0L)
+  if (isPoint(p, q))
   {
     return false;
   }
+  const LD dx = q.x - p.x, dy = q.y - p.y;
+  const LD a = dx * dx + dy * dy;
   // |p + t d|^2 = 1  <=>  a t^2 + 2 b t + c = 0
   const LD b = p.x * dx + p.y * dy;
   const LD c = p.x * p.x + p.y * p.y - 1.0L;
@@ -84,13 +91,6 @@ bool segmentInsideUnitDisk(
   pIn = pOut ? crossing(r0) : p;
   qIn = qOut ? crossing(r1) : q;
   return true;
-}
-
-// segmentInsideUnitDisk's first test, alone: pq has no direction (a zero-length cell edge).
-bool isPoint(PreciseVec2 p, PreciseVec2 q)
-{
-  const long double dx = q.x - p.x, dy = q.y - p.y;
-  return dx * dx + dy * dy == 0.0L;
 }
 
 // theta - sin(theta), accurate for small angles (circular segments of tiny cells).
@@ -318,8 +318,7 @@ private:
       PreciseVec2 ca = a, cb = b;
       bool aOut = false, bOut = false;
       // An edge whose ends are both clearly inside lies inside (the disk is convex): what
-      // segmentInsideUnitDisk returns for it, without its long double roots (most cells),
-      // including that an edge of zero length is no piece.
+      // segmentInsideUnitDisk returns for it, without its long double roots (most cells).
       const bool inside = dot(p, p) < 1.0 - 1e-9 && dot(q, q) < 1.0 - 1e-9;
       if (inside ? isPoint(a, b) : !segmentInsideUnitDisk(a, b, ca, cb, aOut, bOut))
       {

@@ -11,13 +11,6 @@ using namespace otparam;
 
 namespace
 {
-Vec2 closestOnSegment(Vec2 x, Vec2 a, Vec2 b)
-{
-  const Vec2 d = b - a;
-  const double t = std::clamp(dot(x - a, d) / dot(d, d), 0.0, 1.0);
-  return a + t * d;
-}
-
 // A polygon of `sides` edges on a circle of radius `scale` about `centre`, as the sampler's
 // boundary loops are, and the item index of the edge nearest to x by a scan.
 struct Polygon
