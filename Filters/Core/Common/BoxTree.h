@@ -77,9 +77,14 @@ public:
   {
     return this->Order[slot];
   }
+  const Item& box(int slot) const
+  {
+    return this->Items[slot];
+  }
 
-  // Calls consider(item, best) for every item whose box meets [lo, hi] and whose value
-  // exceeds best; consider may raise best. Subtrees whose box `mayMeet(boxLo, boxHi)` rules out
+  // Calls consider(slot, best) for every item whose box meets [lo, hi] and whose value
+  // exceeds best (slot as in forOverlappingSlots; box(slot) is the item's box and value);
+  // consider may raise best. Subtrees whose box `mayMeet(boxLo, boxHi)` rules out
   // are skipped too (a query region thinner than its bounding box: a long thin triangle's box
   // covers much of the domain, and without this the first refinement steps on a 2e6-triangle
   // density took 1.6 s each).
@@ -270,7 +275,7 @@ private:
         if (item.value > best && item.lo.x <= hi.x && lo.x <= item.hi.x && item.lo.y <= hi.y &&
           lo.y <= item.hi.y)
         {
-          consider(this->Order[k], best);
+          consider(k, best);
         }
       }
       return;

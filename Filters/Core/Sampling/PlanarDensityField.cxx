@@ -311,19 +311,27 @@ void DensityField::buildSearchTrees()
     box.value = this->PerTriangle.empty() ? 0.0 : this->PerTriangle[t];
   }
   this->TriangleTree = BoxTree(std::move(triangleBoxes));
+  this->CentroidBySlot.clear();
   if (this->PerTriangle.empty())
   {
     std::vector<BoxTree::Item> pointBoxes;
-    this->PointTreeIds.clear();
     for (size_t i = 0; i < points.size(); ++i)
     {
       if (used[i])
       {
         pointBoxes.push_back({ points[i], points[i], this->PerPoint[i] });
-        this->PointTreeIds.push_back(static_cast<int>(i));
       }
     }
     this->PointTree = BoxTree(std::move(pointBoxes));
+  }
+  else
+  {
+    this->CentroidBySlot.resize(this->Triangles.size());
+    for (size_t slot = 0; slot < this->Triangles.size(); ++slot)
+    {
+      const Triangle& tri = this->Triangles[this->TriangleTree.itemAt(static_cast<int>(slot))];
+      this->CentroidBySlot[slot] = (1.0 / 3.0) * (points[tri[0]] + points[tri[1]] + points[tri[2]]);
+    }
   }
   this->BoundaryEdges.clear();
   std::vector<BoxTree::Item> edgeBoxes;
@@ -539,11 +547,12 @@ double DensityField::maxInsideTriangle(Vec2 a, Vec2 b, Vec2 c) const
   {
     PointTree.maximize(
       lo, hi, largest,
-      [&](int item, double& best)
+      [&](int slot, double& best)
       {
-        if (inside(Points[PointTreeIds[item]], a, b, c, 0.0))
+        const BoxTree::Item& point = PointTree.box(slot); // a box of one point
+        if (inside(point.lo, a, b, c, 0.0))
         {
-          best = PerPoint[PointTreeIds[item]];
+          best = point.value;
         }
       },
       mayMeet);
@@ -552,12 +561,11 @@ double DensityField::maxInsideTriangle(Vec2 a, Vec2 b, Vec2 c) const
   {
     TriangleTree.maximize(
       lo, hi, largest,
-      [&](int t, double& best)
+      [&](int slot, double& best)
       {
-        const Triangle& tri = Triangles[t];
-        if (inside((1.0 / 3.0) * (Points[tri[0]] + Points[tri[1]] + Points[tri[2]]), a, b, c, 0.0))
+        if (inside(CentroidBySlot[slot], a, b, c, 0.0))
         {
-          best = PerTriangle[t];
+          best = TriangleTree.box(slot).value;
         }
       },
       mayMeet);
