@@ -22,8 +22,12 @@ namespace otparam
 inline Eigen::SparseMatrix<double> cotangentLaplacian(
   const IntrinsicTriangulation& triangulation, int n)
 {
+  // The diagonal is summed here, in the order the triplets would have summed it (Eigen adds
+  // duplicates in their order): half the triplets for the same bits (1.09M points: 26M -> 14M,
+  // whose assembly was most of the Laplacian's time).
   std::vector<Eigen::Triplet<double>> entries;
-  entries.reserve(12 * triangulation.triangles.size());
+  entries.reserve(6 * triangulation.triangles.size() + static_cast<size_t>(n));
+  std::vector<double> diagonal(static_cast<size_t>(n), 0.0);
   for (size_t t = 0; t < triangulation.triangles.size(); ++t)
   {
     const Triangle& tri = triangulation.triangles[t];
@@ -33,8 +37,23 @@ inline Eigen::SparseMatrix<double> cotangentLaplacian(
       const int a = tri[(k + 1) % 3], b = tri[(k + 2) % 3];
       entries.emplace_back(a, b, -half);
       entries.emplace_back(b, a, -half);
-      entries.emplace_back(a, a, half);
-      entries.emplace_back(b, b, half);
+      diagonal[a] += half;
+      diagonal[b] += half;
+    }
+  }
+  std::vector<char> touched(static_cast<size_t>(n), 0);
+  for (const Triangle& tri : triangulation.triangles)
+  {
+    for (int v : tri)
+    {
+      touched[v] = 1;
+    }
+  }
+  for (int v = 0; v < n; ++v)
+  {
+    if (touched[v])
+    {
+      entries.emplace_back(v, v, diagonal[v]);
     }
   }
   Eigen::SparseMatrix<double> L(n, n);
