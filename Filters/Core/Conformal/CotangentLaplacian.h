@@ -28,6 +28,7 @@ inline Eigen::SparseMatrix<double> cotangentLaplacian(
   std::vector<Eigen::Triplet<double>> entries;
   entries.reserve(6 * triangulation.triangles.size() + static_cast<size_t>(n));
   std::vector<double> diagonal(static_cast<size_t>(n), 0.0);
+  std::vector<char> touched(static_cast<size_t>(n), 0); // a point of some triangle
   for (size_t t = 0; t < triangulation.triangles.size(); ++t)
   {
     const Triangle& tri = triangulation.triangles[t];
@@ -39,14 +40,7 @@ inline Eigen::SparseMatrix<double> cotangentLaplacian(
       entries.emplace_back(b, a, -half);
       diagonal[a] += half;
       diagonal[b] += half;
-    }
-  }
-  std::vector<char> touched(static_cast<size_t>(n), 0);
-  for (const Triangle& tri : triangulation.triangles)
-  {
-    for (int v : tri)
-    {
-      touched[v] = 1;
+      touched[a] = touched[b] = 1;
     }
   }
   for (int v = 0; v < n; ++v)
