@@ -159,36 +159,40 @@ public:
     // From the boundary alone: a sum over every triangle was ~7% of a sweep (a third of a
     // polishing sweep) at 273k points.
     this->TotalArea = Geometry::totalArea(this->Points, this->BoundaryLoop);
-    const size_t n = this->OriginalIndex.size();
-    std::vector<char> moved(n, 0);
+    const std::int64_t n = static_cast<std::int64_t>(this->OriginalIndex.size());
+    this->Moved.assign(n, 0);
+    std::int64_t movedCount = 0;
     // One parallel region per sweep, not per colour: under OMP_WAIT_POLICY=passive each region
     // wakes the sleeping threads (hand_choi_53k: ~900 regions of 0.3 ms per correction).
-#pragma omp parallel
-    for (size_t c = 0; c + 1 < this->ClassStarts.size(); ++c)
+    // Dynamic chunks: late sweeps move few vertices, bunched around what is still wrong, which
+    // static halves gave mostly to one core. Vertices of one colour are independent, so any
+    // schedule gives the same bits.
+#pragma omp parallel reduction(+ : movedCount)
     {
-      const std::int64_t first = this->ClassStarts[c], last = this->ClassStarts[c + 1];
-#pragma omp for schedule(static)
-      for (std::int64_t v = first; v < last; ++v)
+      for (size_t c = 0; c + 1 < this->ClassStarts.size(); ++c)
       {
-        if (this->Active[v])
+        const std::int64_t first = this->ClassStarts[c], last = this->ClassStarts[c + 1];
+#pragma omp for schedule(dynamic, 512)
+        for (std::int64_t v = first; v < last; ++v)
         {
-          moved[v] = this->move(static_cast<int>(v), this->Points);
+          if (this->Active[v])
+          {
+            this->Moved[v] = this->move(static_cast<int>(v), this->Points);
+          }
         }
       }
-    }
-    std::fill(this->Active.begin(), this->Active.end(), 0);
-    std::int64_t movedCount = 0;
-    for (size_t v = 0; v < n; ++v)
-    {
-      if (moved[v])
+      // Next sweep's candidates: a vertex that moved or shares a triangle with one that did
+      // (stars are symmetric), gathered per vertex so that both cores can do it.
+#pragma omp for schedule(static)
+      for (std::int64_t v = 0; v < n; ++v)
       {
-        ++movedCount;
-        this->Active[v] = 1;
-        for (int e = this->Offsets[v]; e < this->Offsets[v + 1]; ++e)
+        char active = this->Moved[v];
+        movedCount += active;
+        for (int e = this->Offsets[v]; e < this->Offsets[v + 1] && !active; ++e)
         {
-          this->Active[this->Entries[e].b] = 1;
-          this->Active[this->Entries[e].c] = 1;
+          active = this->Moved[this->Entries[e].b] | this->Moved[this->Entries[e].c];
         }
+        this->Active[v] = active;
       }
     }
     return movedCount;
@@ -413,7 +417,7 @@ private:
 
   std::vector<int> Offsets, ClassStarts, OriginalIndex;
   std::vector<StarEntry> Entries;
-  std::vector<char> OnBoundary, Active;
+  std::vector<char> OnBoundary, Active, Moved;
   std::vector<Point> Points; // the sweeps' copy, numbered colour by colour
   double TotalArea = 0.0;
 };

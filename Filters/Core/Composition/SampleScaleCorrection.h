@@ -50,6 +50,7 @@ public:
   // One sweep, colour class by colour class: samples of one class share no triangle, so they
   // move in parallel with exactly the result of moving them in turn. `totalArea`: the
   // domain's, which the targets share. Returns the number of samples moved.
+  // Dynamic chunks: a sample's star holds from a few to hundreds of mesh points.
   std::int64_t sweep(std::vector<Vec2>& uv, double totalArea) const
   {
     std::int64_t moved = 0;
@@ -59,7 +60,7 @@ public:
       for (size_t c = 0; c + 1 < this->ClassStarts.size(); ++c)
       {
         const std::int64_t first = this->ClassStarts[c], last = this->ClassStarts[c + 1];
-#pragma omp for schedule(static)
+#pragma omp for schedule(dynamic, 8)
         for (std::int64_t k = first; k < last; ++k)
         {
           moved += this->move(this->Order[k], uv, totalArea, scratch);
