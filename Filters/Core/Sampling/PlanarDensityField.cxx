@@ -516,13 +516,13 @@ double DensityField::valueAtCentroid(std::size_t t) const
   return valueIn(t, (1.0 / 3.0) * (Points[tri[0]] + Points[tri[1]] + Points[tri[2]]));
 }
 
-double DensityField::maxInsideTriangle(Vec2 a, Vec2 b, Vec2 c) const
+double DensityField::maxInsideTriangle(Vec2 a, Vec2 b, Vec2 c, double atLeast) const
 {
   if (cross(b - a, c - a) < 0.0)
   {
     std::swap(b, c);
   }
-  double largest = value((1.0 / 3.0) * (a + b + c));
+  double largest = std::max(atLeast, value((1.0 / 3.0) * (a + b + c)));
   const Vec2 lo = { std::min({ a.x, b.x, c.x }), std::min({ a.y, b.y, c.y }) };
   const Vec2 hi = { std::max({ a.x, b.x, c.x }), std::max({ a.y, b.y, c.y }) };
   // A box lies outside the (counter-clockwise) triangle when even its corner furthest to the

@@ -36,7 +36,9 @@ public:
   // Largest density over the triangle abc at its centroid and every input point inside it (a
   // piecewise-linear density peaks at input points, which a coarse triangle's corners and
   // centre would miss); the caller adds the corners, whose values it usually knows already.
-  double maxInsideTriangle(Vec2 a, Vec2 b, Vec2 c) const;
+  // Never below `atLeast`: the corners' largest value passed there prunes the search sooner
+  // for the same max(corners, result).
+  double maxInsideTriangle(Vec2 a, Vec2 b, Vec2 c, double atLeast = 0.0) const;
   double integral() const { return Integral; }
   double area() const { return Area; }
 

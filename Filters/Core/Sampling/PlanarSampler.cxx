@@ -259,7 +259,7 @@ private:
     double g = std::max({ f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info() });
     if (Graded && std::isfinite(Epsilon)) // an angles-only pass needs no density
     {
-      g = std::max(g, Field.maxInsideTriangle(toVec(p), toVec(q), toVec(r)));
+      g = Field.maxInsideTriangle(toVec(p), toVec(q), toVec(r), g);
     }
     const double nuRadius = radius * grading(g);
     const double shortest = std::sqrt(std::min({ CGAL::squared_distance(p, q),
@@ -804,8 +804,8 @@ public:
         if (G.graded)
         {
           const Vec2 vp = toVec(p), vr = toVec(r), vs = toVec(s);
-          g = std::max({ G.field->value(vp), G.field->value(vr), G.field->value(vs),
-            G.field->maxInsideTriangle(vp, vr, vs) });
+          g = G.field->maxInsideTriangle(
+            vp, vr, vs, std::max({ G.field->value(vp), G.field->value(vr), G.field->value(vs) }));
           g = G.rule == SizeRule::SqrtDensity ? std::sqrt(g) : g;
         }
         const double ratio = radius * g / G.epsilon;
