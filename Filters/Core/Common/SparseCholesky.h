@@ -16,6 +16,15 @@ namespace otparam
 // Eigen's simplicial LDL^T, or CHOLMOD's supernodal LL^T from CholmodThreshold unknowns up
 // (measured on planar Laplacians: simplicial wins below ~2e5, supernodal above).
 // Reads the lower triangle only.
+//
+// At CHOLMOD's sizes the unknowns are split in two halves that a small separator S keeps apart
+// (GraphSeparator.h), whenever the graph has one: each half is factored with S (and the caller's
+// trailing block) last, the two side by side on the two cores, and the Schur complement on S
+// (and that block) is summed from the two factors' trailing blocks and factored dense. A
+// planar graph's half costs ~0.35 of the whole, so the factorization's wall time falls by more
+// than half, and the halves are the same whatever the thread count (the same bits on one core,
+// only later). Side by side only while OpenBLAS runs on one thread: two factorizations on its
+// default threads oversubscribed the cores (docs/design.md).
 class SparseCholesky
 {
 public:
@@ -57,14 +66,27 @@ public:
   SchurFactor trailingSchurFactor() const;
   int size() const { return Size; }
   // Eigen's solve keeps no state between calls; CHOLMOD's shares a workspace.
-  bool concurrentSolvesAreSafe() const { return !Supernodal; }
+  bool concurrentSolvesAreSafe() const { return !Supernodal && !Halves; }
+  // Whether CHOLMOD-sized factorizations may be split in two halves (see above). Off by
+  // default: the halves' factors hold more entries than one factor of the whole (the face at
+  // 1.09M points: 1.34e8 against 9.7e7; 1e6 Diracs: peak 1180 -> 1501 MiB, over the OT
+  // solver's memory target); the conformal maps turn it on.
+  void allowHalves(bool allow) { AllowHalves = allow; }
+  // True when the last factorization was done in two halves.
+  bool factoredInHalves() const { return static_cast<bool>(Halves); }
 
 private:
   struct Cholmod; // CHOLMOD stays inside SparseCholesky.cxx (see there)
+  struct TwoHalves;
+  // The factorization in two halves of `lower` whose first `leading` unknowns are split;
+  // false when they have no balanced small separator or the matrix is not positive definite.
+  bool computeInHalves(
+    const SparseMatrix& lower, int leading, const std::function<bool()>& keepGoing);
   bool factorPermuted(const SparseMatrix& lower, const std::function<bool()>& keepGoing);
   Eigen::MatrixXd permuted(const Eigen::MatrixXd& b) const;
   int Size = -1;
   int CholmodFrom = CholmodThreshold;
+  bool AllowHalves = false;
   Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower> Ldlt;
   // computeWithLeadingBlock: the factor of P A P^T in its own order; Position[i] = row of
   // unknown i in it.
@@ -72,6 +94,7 @@ private:
   std::vector<int> Position;
   int Leading = -1;
   std::unique_ptr<Cholmod> Supernodal;
+  std::unique_ptr<TwoHalves> Halves;
 };
 
 } // namespace otparam

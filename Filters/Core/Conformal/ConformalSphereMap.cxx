@@ -143,6 +143,7 @@ bool solveDirichlet(const SparseMatrix& L, const std::vector<char>& fixed, Eigen
   SparseMatrix LFF(nf, nf);
   LFF.setFromTriplets(lower.begin(), lower.end());
   SparseCholesky cholesky(SphereMapCholmodFrom);
+  cholesky.allowHalves(true); // on both cores (SparseCholesky.h)
   if (!cholesky.compute(LFF, keepGoing))
   {
     return false;
