@@ -11,10 +11,11 @@
 #ifdef OTPARAM_HAVE_CHOLMOD
 #include <Eigen/CholmodSupport>
 #include <dlfcn.h>
-// The BLAS under CHOLMOD (Fortran interface).
+// The BLAS and LAPACK under CHOLMOD (Fortran interface).
 extern "C" void dsyrk_(const char* uplo, const char* trans, const int* n, const int* k,
   const double* alpha, const double* a, const int* lda, const double* beta, double* c,
   const int* ldc);
+extern "C" void dpotrf_(const char* uplo, const int* n, double* a, const int* lda, int* info);
 #endif
 #ifdef _OPENMP
 #include <omp.h>
@@ -247,17 +248,12 @@ struct SparseCholesky::TwoHalves
     return a;
   }
 
-  // LC from T0, T1 and A_TT: the products by the BLAS (one per core), the dense factor by
-  // CHOLMOD (one supernode: LAPACK's). Eigen's own dense kernels, built for the baseline
-  // x86-64, took 2.5 s for what the BLAS does in a fraction (m = 2637, the face at 1.09M).
+  // LC from T0, T1 and A_TT, by the BLAS and LAPACK (the products one per core, then the dense
+  // factor in place). Eigen's own dense kernels, built for the baseline x86-64, took 2.5 s for
+  // this at 1.09M points (m = 2637); a CHOLMOD factorization of C as a sparse matrix 0.8 s.
   bool factorSchurComplement(const SparseMatrix& lower)
   {
     const int m = static_cast<int>(this->trailing.size());
-    std::vector<int> local(lower.rows(), -1);
-    for (int k = 0; k < m; ++k)
-    {
-      local[this->trailing[k]] = k;
-    }
     std::array<Eigen::MatrixXd, 2> products;
     onBothCores(
       [&](int i)
@@ -268,32 +264,31 @@ struct SparseCholesky::TwoHalves
         dsyrk_(
           &uplo, &trans, &m, &m, &one, this->border[i].data(), &m, &zero, products[i].data(), &m);
       });
-    const SparseMatrix a = restricted(lower, local, m);
-    std::vector<Eigen::Triplet<double>> entries;
-    entries.reserve(static_cast<size_t>(m) * (m + 1) / 2);
-    for (int col = 0; col < m; ++col)
+    Eigen::MatrixXd& c = products[0];
+    c.triangularView<Eigen::Lower>() += products[1];
+    products[1] = Eigen::MatrixXd();
+    std::vector<int> local(lower.rows(), -1);
+    for (int k = 0; k < m; ++k)
     {
-      for (int row = col; row < m; ++row)
-      {
-        entries.emplace_back(row, col, products[0](row, col) + products[1](row, col));
-      }
+      local[this->trailing[k]] = k;
     }
+    const SparseMatrix a = restricted(lower, local, m);
     for (int col = 0; col < m; ++col)
     {
       for (SparseMatrix::InnerIterator it(a, col); it; ++it)
       {
-        entries.emplace_back(it.row(), col, -it.value());
+        c(it.row(), col) -= it.value();
       }
     }
-    products = {};
-    SparseMatrix c(m, m);
-    c.setFromTriplets(entries.begin(), entries.end());
-    Cholmod dense(true);
-    if (!analyzeThenFactor(dense.factor, c, {}))
+    const char uplo = 'L';
+    int info = 0;
+    dpotrf_(&uplo, &m, c.data(), &m, &info);
+    if (info != 0)
     {
       return false;
     }
-    this->schurLower = dense.trailingBlock(0);
+    c.triangularView<Eigen::StrictlyUpper>().setZero();
+    this->schurLower = std::move(c);
     return true;
   }
 
