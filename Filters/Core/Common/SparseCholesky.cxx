@@ -147,6 +147,48 @@ void onBothCores(const Task& task)
     }
   }
 }
+#ifdef OTPARAM_HAVE_CHOLMOD
+// The graph of the leading `leading` unknowns of a lower triangle: an edge per entry below
+// the diagonal.
+Adjacency leadingGraph(const SparseCholesky::SparseMatrix& lower, int leading)
+{
+  Adjacency graph;
+  graph.offsets.assign(leading + 1, 0);
+  auto forEdge = [&](const auto& visit)
+  {
+    for (int col = 0; col < leading; ++col)
+    {
+      for (SparseCholesky::SparseMatrix::InnerIterator it(lower, col); it; ++it)
+      {
+        const int row = static_cast<int>(it.row());
+        if (row > col && row < leading)
+        {
+          visit(row, col);
+        }
+      }
+    }
+  };
+  forEdge(
+    [&](int row, int col)
+    {
+      ++graph.offsets[row + 1];
+      ++graph.offsets[col + 1];
+    });
+  for (int v = 0; v < leading; ++v)
+  {
+    graph.offsets[v + 1] += graph.offsets[v];
+  }
+  graph.targets.resize(graph.offsets.back());
+  std::vector<int> fill(graph.offsets.begin(), graph.offsets.end() - 1);
+  forEdge(
+    [&](int row, int col)
+    {
+      graph.targets[fill[row]++] = col;
+      graph.targets[fill[col]++] = row;
+    });
+  return graph;
+}
+#endif
 } // namespace
 
 #ifdef OTPARAM_HAVE_CHOLMOD
@@ -586,37 +628,7 @@ bool SparseCholesky::computeInHalves(
   {
     return false;
   }
-  Adjacency graph;
-  graph.offsets.assign(leading + 1, 0);
-  for (int col = 0; col < leading; ++col)
-  {
-    for (SparseMatrix::InnerIterator it(lower, col); it; ++it)
-    {
-      if (it.row() > col && it.row() < leading)
-      {
-        ++graph.offsets[it.row() + 1];
-        ++graph.offsets[col + 1];
-      }
-    }
-  }
-  for (int v = 0; v < leading; ++v)
-  {
-    graph.offsets[v + 1] += graph.offsets[v];
-  }
-  graph.targets.resize(graph.offsets.back());
-  std::vector<int> fill(graph.offsets.begin(), graph.offsets.end() - 1);
-  for (int col = 0; col < leading; ++col)
-  {
-    for (SparseMatrix::InnerIterator it(lower, col); it; ++it)
-    {
-      const int row = static_cast<int>(it.row());
-      if (row > col && row < leading)
-      {
-        graph.targets[fill[row]++] = col;
-        graph.targets[fill[col]++] = row;
-      }
-    }
-  }
+  const Adjacency graph = leadingGraph(lower, leading);
   // Work models (flops): AMD on a planar graph of n unknowns ~SparseWork n^1.5 (CHOLMOD, the
   // face at 1.09M points: 9.5e10); m dense trailing unknowns ~m^3 in all (their share of both
   // sides' factors, the two products and the dense factor).
@@ -632,7 +644,7 @@ bool SparseCholesky::computeInHalves(
   const double split = separateByLevels(graph, work, part);
   const double whole =
     SparseWork * leading * std::sqrt(double(leading)) + trailing * trailing * trailing / 3.0;
-  if (!(split < 0.8 * whole))
+  if (!(split < 0.8 * whole)) // halves only where the model saves a fifth or more
   {
     return false;
   }
