@@ -147,6 +147,29 @@ void onBothCores(const Task& task)
     }
   }
 }
+// The lower triangle of A[rows, rows] for the unknowns with local[v] >= 0, renumbered to
+// local[v] (a permutation when every local[v] >= 0).
+SparseCholesky::SparseMatrix restricted(
+  const SparseCholesky::SparseMatrix& lower, const std::vector<int>& local, int size)
+{
+  std::vector<Eigen::Triplet<double>> entries;
+  entries.reserve(lower.nonZeros());
+  for (int col = 0; col < lower.outerSize(); ++col)
+  {
+    for (SparseCholesky::SparseMatrix::InnerIterator it(lower, col); it; ++it)
+    {
+      const int r = local[it.row()], c = local[col];
+      if (r >= 0 && c >= 0 && it.row() >= col)
+      {
+        entries.emplace_back(std::max(r, c), std::min(r, c), it.value());
+      }
+    }
+  }
+  SparseCholesky::SparseMatrix a(size, size);
+  a.setFromTriplets(entries.begin(), entries.end());
+  return a;
+}
+
 #ifdef OTPARAM_HAVE_CHOLMOD
 // The graph of the leading `leading` unknowns of a lower triangle: an edge per entry below
 // the diagonal.
@@ -268,26 +291,6 @@ struct SparseCholesky::TwoHalves
     }
     this->border[i] = this->factor[i]->trailingBlock(ni);
     return true;
-  }
-
-  // The lower triangle of A[rows, rows] for the unknowns with local[v] >= 0, renumbered.
-  static SparseMatrix restricted(const SparseMatrix& lower, const std::vector<int>& local, int size)
-  {
-    std::vector<Eigen::Triplet<double>> entries;
-    for (int col = 0; col < lower.outerSize(); ++col)
-    {
-      for (SparseMatrix::InnerIterator it(lower, col); it; ++it)
-      {
-        const int r = local[it.row()], c = local[col];
-        if (r >= 0 && c >= 0 && it.row() >= col)
-        {
-          entries.emplace_back(std::max(r, c), std::min(r, c), it.value());
-        }
-      }
-    }
-    SparseMatrix a(size, size);
-    a.setFromTriplets(entries.begin(), entries.end());
-    return a;
   }
 
   // LC from T0, T1 and A_TT, by the BLAS and LAPACK (the products one per core, then the dense
@@ -488,22 +491,7 @@ bool SparseCholesky::computeWithLeadingBlock(
   {
     this->Position[i] = i;
   }
-  std::vector<Eigen::Triplet<double>> entries;
-  entries.reserve(lower.nonZeros());
-  for (int col = 0; col < n; ++col)
-  {
-    for (SparseMatrix::InnerIterator it(lower, col); it; ++it)
-    {
-      const int r = this->Position[it.row()], c = this->Position[col];
-      if (it.row() >= col)
-      {
-        entries.emplace_back(std::max(r, c), std::min(r, c), it.value());
-      }
-    }
-  }
-  SparseMatrix ordered(n, n);
-  ordered.setFromTriplets(entries.begin(), entries.end());
-  return this->factorPermuted(ordered, keepGoing);
+  return this->factorPermuted(restricted(lower, this->Position, n), keepGoing);
 }
 
 bool SparseCholesky::factorPermuted(

@@ -35,9 +35,8 @@ public:
   double valueAtCentroid(std::size_t t) const;
   // Largest density over the triangle abc at its centroid and every input point inside it (a
   // piecewise-linear density peaks at input points, which a coarse triangle's corners and
-  // centre would miss); the caller adds the corners, whose values it usually knows already.
-  // Never below `atLeast`: the corners' largest value passed there prunes the search sooner
-  // for the same max(corners, result).
+  // centre would miss), and never below `atLeast`: the caller passes its corners' largest
+  // value there (it usually knows them already), which prunes the search sooner.
   double maxInsideTriangle(Vec2 a, Vec2 b, Vec2 c, double atLeast = 0.0) const;
   double integral() const { return Integral; }
   double area() const { return Area; }
