@@ -319,12 +319,15 @@ int vtkAreaPreservingParam::Execute(
     return 0;
   }
 
+  // Automatic's checks of the mesh serve the pipeline it chooses (0.4 s at 1e6 points).
+  otparam::AnalyzedInput analysis;
+  otparam::AnalyzedInput* analyzed = this->Domain == AUTOMATIC ? &analysis : nullptr;
   const bool sphere = this->Domain == SPHERE ||
-    (this->Domain == AUTOMATIC &&
-      otparam::chooseDomain(soup, this->FillHoles) == otparam::Domain::Sphere);
+    (analyzed && otparam::chooseDomain(soup, this->FillHoles, analyzed) == otparam::Domain::Sphere);
   if (sphere)
   {
-    const otparam::SphereParameterizationResult run = otparam::parameterizeSphere(soup, options);
+    const otparam::SphereParameterizationResult run =
+      otparam::parameterizeSphere(soup, options, analyzed);
     this->SetProgressText(nullptr);
     if (!this->ReportStatus(run.status))
     {
@@ -333,7 +336,7 @@ int vtkAreaPreservingParam::Execute(
     WriteRun(run, this->NumberOfHistogramBins, input, outputVector);
     return 1;
   }
-  const otparam::AreaPreservingResult run = otparam::parameterizeDisk(soup, options);
+  const otparam::AreaPreservingResult run = otparam::parameterizeDisk(soup, options, analyzed);
   this->SetProgressText(nullptr);
   if (!this->ReportStatus(run.status))
   {

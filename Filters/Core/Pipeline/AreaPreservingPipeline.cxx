@@ -829,7 +829,7 @@ std::int64_t estimatedMemoryBytes(std::int64_t vertices, std::int64_t samples)
 
 //------------------------------------------------------------------------------
 AreaPreservingResult parameterizeDisk(
-  const TriangleSoup& surface, const AreaPreservingOptions& requested)
+  const TriangleSoup& surface, const AreaPreservingOptions& requested, AnalyzedInput* analyzed)
 {
   const AreaPreservingOptions options = withSampleCount(requested, surface);
   AreaPreservingResult run;
@@ -839,7 +839,7 @@ AreaPreservingResult parameterizeDisk(
     {
       ConformalStageOptions conformalOptions = options.conformal;
       conformalOptions.map.progress = stageProgress(options, ConformalRange);
-      run.conformal = runConformalStage(surface, conformalOptions);
+      run.conformal = runConformalStage(surface, conformalOptions, analyzed);
     },
     [&]
     {
@@ -866,15 +866,17 @@ AreaPreservingResult parameterizeDisk(
 }
 
 //------------------------------------------------------------------------------
-Domain chooseDomain(const TriangleSoup& surface, bool fillHoles)
+Domain chooseDomain(const TriangleSoup& surface, bool fillHoles, AnalyzedInput* analysis)
 {
-  CompactedMesh compacted;
-  SurfaceTopology topology;
-  if (!compactMesh(surface.points, surface.triangles, compacted).empty() ||
-    !analyzeSurface(compacted.mesh, topology).empty())
+  AnalyzedInput own;
+  AnalyzedInput& input = analysis ? *analysis : own;
+  input.error = analyzeInput(surface, input.compacted, input.topology);
+  if (!input.error.empty())
   {
     return Domain::Disk; // its checks name the problem
   }
+  const CompactedMesh& compacted = input.compacted;
+  const SurfaceTopology& topology = input.topology;
   const bool closable = fillHoles && topology.components == 1 &&
     topology.eulerCharacteristic + static_cast<long long>(topology.boundaryLoops.size()) == 2 &&
     largestHoleFraction(compacted.mesh, topology.boundaryLoops) <= SmallHoleFraction;
@@ -958,7 +960,7 @@ void untangleConformalStart(SphereParameterizationResult& run)
 
 //------------------------------------------------------------------------------
 SphereParameterizationResult parameterizeSphere(
-  const TriangleSoup& surface, const AreaPreservingOptions& requested)
+  const TriangleSoup& surface, const AreaPreservingOptions& requested, AnalyzedInput* analyzed)
 {
   const AreaPreservingOptions options = withSampleCount(requested, surface);
   SphereParameterizationResult run;
@@ -969,7 +971,7 @@ SphereParameterizationResult parameterizeSphere(
       ConformalSphereMapOptions conformalOptions = options.sphereMap;
       conformalOptions.progress = stageProgress(options, ConformalRange);
       run.conformal =
-        runSphereConformalStage(surface, conformalOptions, options.conformal.fillHoles);
+        runSphereConformalStage(surface, conformalOptions, options.conformal.fillHoles, analyzed);
     },
     [&]
     {

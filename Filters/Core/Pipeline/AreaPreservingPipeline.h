@@ -8,6 +8,7 @@
 #include "Composition/DiskComposition.h"
 #include "Composition/SphereComposition.h"
 #include "Pipeline/DiskStages.h"
+#include "Pipeline/InputPart.h"
 #include "Pipeline/SphereStages.h"
 
 #include <cstdint>
@@ -74,8 +75,10 @@ std::int64_t automaticSampleCount(std::int64_t points);
 // docs/robustness.md).
 std::int64_t estimatedMemoryBytes(std::int64_t vertices, std::int64_t samples);
 
-AreaPreservingResult parameterizeDisk(
-  const TriangleSoup& surface, const AreaPreservingOptions& options = AreaPreservingOptions());
+// `analyzed`: chooseDomain's analysis of `surface`, taken over (the mesh is not checked again).
+AreaPreservingResult parameterizeDisk(const TriangleSoup& surface,
+  const AreaPreservingOptions& options = AreaPreservingOptions(),
+  AnalyzedInput* analyzed = nullptr);
 
 // Where a surface is mapped: the disk (one boundary loop, or several with FillHoles) or the
 // sphere (closed, genus 0).
@@ -88,8 +91,11 @@ enum class Domain
 
 // The domain Automatic stands for: Sphere for a closed surface (no boundary edge), or with
 // fillHoles for a connected genus-0 surface whose holes are all small (the largest would cover
-// at most 1% of the surface: a closed scan with gaps); else Disk.
-Domain chooseDomain(const TriangleSoup& surface, bool fillHoles = true);
+// at most 1% of the surface: a closed scan with gaps); else Disk (also for a mesh that fails
+// the checks, whose disk pipeline names the problem). `analysis`, when given, keeps the checks'
+// results for the pipeline chosen.
+Domain chooseDomain(
+  const TriangleSoup& surface, bool fillHoles = true, AnalyzedInput* analysis = nullptr);
 
 // The sphere's chain (sphere.md): conformal sphere map -> adaptive sampling of its area density
 // on the sphere -> transport from the uniform sphere -> composition T^-1 o phi.
@@ -116,8 +122,9 @@ struct SphereParameterizationResult
          secondsTotal = 0;
 };
 
-SphereParameterizationResult parameterizeSphere(
-  const TriangleSoup& surface, const AreaPreservingOptions& options = AreaPreservingOptions());
+SphereParameterizationResult parameterizeSphere(const TriangleSoup& surface,
+  const AreaPreservingOptions& options = AreaPreservingOptions(),
+  AnalyzedInput* analyzed = nullptr);
 
 // Where each Dirac goes under T^-1: the centroid of its power cell, or for a Dirac on the unit
 // circle the middle of its cell's arc of the circle (boundaryArcMidpoint).

@@ -129,7 +129,8 @@ std::string ConformalStageOptions::check() const
 }
 
 //------------------------------------------------------------------------------
-ConformalStage runConformalStage(const TriangleSoup& soup, const ConformalStageOptions& options)
+ConformalStage runConformalStage(
+  const TriangleSoup& soup, const ConformalStageOptions& options, AnalyzedInput* analyzed)
 {
   ConformalStage stage;
   Status& status = stage.status;
@@ -139,7 +140,7 @@ ConformalStage runConformalStage(const TriangleSoup& soup, const ConformalStageO
     return stage;
   }
   SurfaceTopology topology;
-  status.error = analyzeInput(soup, stage.surface, topology);
+  status.error = takeOrAnalyzeInput(soup, analyzed, stage.surface, topology);
   stage.inputPoints = stage.surface.mesh.points.size();
   stage.inputTriangles = stage.surface.mesh.triangles.size();
   if (!status.error.empty())

@@ -22,6 +22,7 @@
 
 namespace otparam
 {
+struct AnalyzedInput;
 
 // ---- Stage 1: surface -> unit disk, conformally.
 struct ConformalStageOptions
@@ -70,7 +71,9 @@ struct ConformalStage
 // (bunny_holes_35k's largest) to 97%.
 constexpr double SmallHoleFraction = 0.01;
 
-ConformalStage runConformalStage(const TriangleSoup& soup, const ConformalStageOptions& options);
+// `analyzed`: the soup's analyzeInput, when the caller has it (InputPart.h), taken over.
+ConformalStage runConformalStage(const TriangleSoup& soup, const ConformalStageOptions& options,
+  AnalyzedInput* analyzed = nullptr);
 
 // Drops the hole fill from a stage's surface, map, densities and figures (which are measured
 // again on the input's own triangles); `perPointMaps` are cut to the input's points as well.

@@ -30,6 +30,29 @@ inline std::string analyzeInput(
   return error.empty() ? error : "The input is not a valid triangle surface: " + error + ".";
 }
 
+// analyzeInput's results kept to be handed on: chooseDomain's analysis serves the pipeline it
+// chooses, whose conformal stage would otherwise check the mesh again (0.4 s at 1.09M points).
+struct AnalyzedInput
+{
+  CompactedMesh compacted;
+  SurfaceTopology topology;
+  std::string error; // analyzeInput's
+};
+
+// analyzeInput's results: `analyzed`'s, moved out of it (it must be the same soup's), or made
+// here when it is null.
+inline std::string takeOrAnalyzeInput(const TriangleSoup& soup, AnalyzedInput* analyzed,
+  CompactedMesh& compacted, SurfaceTopology& topology)
+{
+  if (!analyzed)
+  {
+    return analyzeInput(soup, compacted, topology);
+  }
+  compacted = std::move(analyzed->compacted);
+  topology = std::move(analyzed->topology);
+  return analyzed->error;
+}
+
 // Takes a hole fill into the stage: the filled mesh as its surface (fill points have original
 // id -1), the fill's counts for the figures.
 template <class Stage>

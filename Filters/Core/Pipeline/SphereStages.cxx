@@ -78,13 +78,13 @@ std::string closeHoles(const SurfaceTopology& topology, SphereConformalStage& st
 }
 } // namespace
 
-SphereConformalStage runSphereConformalStage(
-  const TriangleSoup& soup, const ConformalSphereMapOptions& options, bool fillHoles)
+SphereConformalStage runSphereConformalStage(const TriangleSoup& soup,
+  const ConformalSphereMapOptions& options, bool fillHoles, AnalyzedInput* analyzed)
 {
   SphereConformalStage stage;
   Status& status = stage.status;
   SurfaceTopology topology;
-  status.error = analyzeInput(soup, stage.surface, topology);
+  status.error = takeOrAnalyzeInput(soup, analyzed, stage.surface, topology);
   stage.inputPoints = stage.surface.mesh.points.size();
   stage.inputTriangles = stage.surface.mesh.triangles.size();
   if (!status.error.empty())

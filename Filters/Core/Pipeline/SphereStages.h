@@ -15,6 +15,7 @@
 
 namespace otparam
 {
+struct AnalyzedInput;
 
 // ---- Stage 1: closed genus-0 surface -> unit sphere, conformally.
 struct SphereConformalStage
@@ -34,8 +35,10 @@ struct SphereConformalStage
 
 // fillHoles: a connected genus-0 surface with boundary loops (a closed scan with holes) is
 // closed for the computation by filling every hole; keepInputPart drops the fill again.
-SphereConformalStage runSphereConformalStage(
-  const TriangleSoup& soup, const ConformalSphereMapOptions& options, bool fillHoles = false);
+// `analyzed`: the soup's analyzeInput, when the caller has it (InputPart.h), taken over.
+SphereConformalStage runSphereConformalStage(const TriangleSoup& soup,
+  const ConformalSphereMapOptions& options, bool fillHoles = false,
+  AnalyzedInput* analyzed = nullptr);
 
 // Drops the hole fill from a stage's surface, map, densities and figures (measured again on
 // the input's own triangles); `perPointMaps` are cut to the input's points as well.

@@ -11,6 +11,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 
 namespace otparam
 {
@@ -195,6 +196,52 @@ TEST(Pipeline, AbortAtAnyCheckIsHonoured)
     toSoup(otparam::testing::convexHullMesh(otparam::testing::fibonacciSphere(500))),
     [](const TriangleSoup& s, const AreaPreservingOptions& o) { return parameterizeSphere(s, o); },
     [](const SphereParameterizationResult& r) { return r.composition.sphere; });
+}
+
+// chooseDomain's checks, handed to the pipeline it chooses (as vtkAreaPreservingParam's
+// Automatic does), give the same map bit for bit as the pipeline's own checks, and the same
+// message for a mesh they refuse.
+template <class Point>
+bool sameBits(const std::vector<Point>& a, const std::vector<Point>& b)
+{
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(Point)) == 0;
+}
+
+TEST(Pipeline, ChooseDomainHandsItsChecksOn)
+{
+  AreaPreservingOptions options;
+  options.sampling.numberOfSamples = 300;
+  const TriangleSoup disk = testing::readSoup(testing::sharedMesh("hemisphere_2k.obj"));
+  AnalyzedInput analysis;
+  ASSERT_EQ(chooseDomain(disk, true, &analysis), Domain::Disk);
+  EXPECT_EQ(analysis.error, "");
+  EXPECT_EQ(analysis.topology.boundaryLoops.size(), 1u);
+  const AreaPreservingResult handed = parameterizeDisk(disk, options, &analysis);
+  EXPECT_TRUE(analysis.compacted.mesh.points.empty()); // taken over, not made again
+  const AreaPreservingResult own = parameterizeDisk(disk, options);
+  ASSERT_TRUE(handed.status.ok()) << handed.status.error;
+  EXPECT_TRUE(sameBits(handed.composition.uv, own.composition.uv));
+  EXPECT_EQ(handed.conformal.surface.originalPointIds, own.conformal.surface.originalPointIds);
+  EXPECT_EQ(handed.figures.meanAbsLogAreaRatio, own.figures.meanAbsLogAreaRatio);
+
+  const TriangleSoup sphere =
+    toSoup(otparam::testing::convexHullMesh(otparam::testing::fibonacciSphere(500)));
+  AnalyzedInput closed;
+  ASSERT_EQ(chooseDomain(sphere, true, &closed), Domain::Sphere);
+  const SphereParameterizationResult handedSphere = parameterizeSphere(sphere, options, &closed);
+  ASSERT_TRUE(handedSphere.status.ok()) << handedSphere.status.error;
+  EXPECT_TRUE(sameBits(
+    handedSphere.composition.sphere, parameterizeSphere(sphere, options).composition.sphere));
+
+  TriangleSoup broken = disk;
+  broken.points[7].y = std::nan("");
+  AnalyzedInput refused;
+  EXPECT_EQ(chooseDomain(broken, true, &refused), Domain::Disk);
+  EXPECT_NE(refused.error.find("NaN or infinite coordinates: point ids 7"), std::string::npos)
+    << refused.error;
+  const AreaPreservingResult refusedRun = parameterizeDisk(broken, options, &refused);
+  EXPECT_TRUE(refusedRun.composition.uv.empty());
+  EXPECT_EQ(refusedRun.status.error, parameterizeDisk(broken, options).status.error);
 }
 
 // The surface is the unit sphere with its points crowded toward a pole: both maps are
