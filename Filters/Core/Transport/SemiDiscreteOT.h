@@ -35,6 +35,9 @@ struct OTOptions
   // of high contrast): far fewer fine Newton iterations than from the shrunk Voronoi diagram
   // (docs/design.md).
   bool coarseToFineStart = true;
+  // Where the Diracs crowd towards the circle (unit-disk source), also try the radial map's
+  // start (SemiDiscreteOT.cxx) and keep it when it is nearer the solution.
+  bool radialStart = true;
   // Called once per Newton iteration with (iteration, relative error); return false to abort.
   std::function<bool(int, double)> progress;
 };
