@@ -39,6 +39,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <future>
 #include <map>
 #include <numeric>
 #include <queue>
@@ -1312,6 +1313,29 @@ std::size_t sampleCount(const std::vector<std::vector<Vec2>>& loops)
   return count;
 }
 
+// The field's source measure (for the relaxation's integrals), built on a second thread while
+// the refinement, which is sequential, runs on this one; both only read the field.
+class SourceInBackground
+{
+public:
+  explicit SourceInBackground(const DensityField& field)
+    : Build(
+        std::async(std::launch::async, [&field, this] { return field.makeSource(this->Error); }))
+  {
+  }
+  // Waits for the build; null with `error` set when it failed.
+  std::unique_ptr<SourceMeasure> get(std::string& error)
+  {
+    std::unique_ptr<SourceMeasure> source = this->Build.get();
+    error = this->Error;
+    return source;
+  }
+
+private:
+  std::string Error; // before Build: written by the build's thread
+  std::future<std::unique_ptr<SourceMeasure>> Build;
+};
+
 void sampleSupport(
   const DensityField& field, const SamplerOptions& options, double integral, SamplerResult& result)
 {
@@ -1326,6 +1350,7 @@ void sampleSupport(
     const double g = field.value(x);
     return options.sizeRule == SizeRule::SqrtDensity ? std::sqrt(g) : g;
   };
+  SourceInBackground sourceBuild(field);
   std::unique_ptr<CDT> cdt;
   std::vector<std::vector<Vec2>> refinedLoops, loops; // all boundary samples; the kept ones
   RefinementProgress progress(options);
@@ -1371,7 +1396,7 @@ void sampleSupport(
   }
   const std::vector<Vec2> interior = interiorSamples(*cdt, refinedLoops);
   std::string error;
-  const auto source = field.makeSource(error);
+  const auto source = sourceBuild.get(error);
   if (!source)
   {
     result.status.error = error;
@@ -1459,6 +1484,7 @@ void sampleConvex(
   const DensityField& field, const SamplerOptions& options, double integral, SamplerResult& result)
 {
   const double target = static_cast<double>(options.numberOfSamples);
+  SourceInBackground sourceBuild(field);
   RefinementProgress progress(options);
   std::unique_ptr<Refinement> refinement;
   std::unordered_set<const void*> drop; // boundary samples dropped from the last run
@@ -1499,8 +1525,7 @@ void sampleConvex(
   }
   const std::vector<Vec2> refined = result.samples;
   std::string error;
-  // The relaxation's first abort check follows this build (~0.1 s at 5e5 density triangles).
-  const auto source = field.makeSource(error);
+  const auto source = sourceBuild.get(error);
   if (!source)
   {
     result.status.error = error;
