@@ -578,33 +578,39 @@ void shrunkStart(
 // hand_choi_53k 20 -> 17, bust_aphrodite_56k 12 -> 9, face_choi_bff_17k 11 -> 9; the others
 // the same or one fewer.
 std::vector<Height> radialStartHeights(
-  const std::vector<Vec2>& diracs, const std::vector<double>& nu)
+  const std::vector<Vec2>& diracs, const std::vector<int>& byRadius, const std::vector<double>& nu)
 {
-  const size_t n = diracs.size();
-  std::vector<double> radius(n);
-  double total = 0.0;
-  for (size_t i = 0; i < n; ++i)
-  {
-    radius[i] = norm(diracs[i]);
-    total += nu[i];
-  }
-  std::vector<int> byRadius(n);
-  std::iota(byRadius.begin(), byRadius.end(), 0);
-  std::sort(byRadius.begin(), byRadius.end(),
-    [&radius](int a, int b) { return radius[a] < radius[b] || (radius[a] == radius[b] && a < b); });
-  std::vector<Height> h(n);
+  const double total = std::accumulate(nu.begin(), nu.end(), 0.0);
+  std::vector<Height> h(diracs.size());
   long double potential = 0.0L;
   double massInside = 0.0, lastR = 0.0, lastRadius = 0.0;
   for (const int i : byRadius)
   {
+    const double radius = norm(diracs[i]);
     const double R = std::sqrt(std::min(1.0, (massInside + 0.5 * nu[i]) / total));
-    potential += 0.5L * (lastR + R) * (radius[i] - lastRadius);
+    potential += 0.5L * (lastR + R) * (radius - lastRadius);
     h[i] = potential;
     massInside += nu[i];
     lastR = R;
-    lastRadius = radius[i];
+    lastRadius = radius;
   }
   return h;
+}
+
+// The Diracs' ids by distance to the disk's centre (ties by id), which both the radial start
+// and its share test walk.
+std::vector<int> idsByRadius(const std::vector<Vec2>& diracs)
+{
+  std::vector<double> radius(diracs.size());
+  for (size_t i = 0; i < diracs.size(); ++i)
+  {
+    radius[i] = norm(diracs[i]);
+  }
+  std::vector<int> ids(diracs.size());
+  std::iota(ids.begin(), ids.end(), 0);
+  std::sort(ids.begin(), ids.end(),
+    [&radius](int a, int b) { return radius[a] < radius[b] || (radius[a] == radius[b] && a < b); });
+  return ids;
 }
 
 // Share of the variance of log(m_i / nu_i) (cell masses m_i of some start, all positive) that
@@ -616,18 +622,14 @@ std::vector<Height> radialStartHeights(
 // Newton iterations against 19 (3e3 Diracs of contrast 1e4) and 198 against 25 (1e4).
 constexpr int RadialStartRings = 20;
 constexpr double RadialStartShare = 0.5;
-double radialShareOfMassErrors(const std::vector<Vec2>& diracs, const std::vector<double>& cellMass,
-  const std::vector<double>& nu)
+double radialShareOfMassErrors(const std::vector<int>& byRadius,
+  const std::vector<double>& cellMass, const std::vector<double>& nu)
 {
-  const size_t n = diracs.size();
+  const size_t n = byRadius.size();
   if (n < 10 * RadialStartRings)
   {
     return 0.0;
   }
-  std::vector<int> byRadius(n);
-  std::iota(byRadius.begin(), byRadius.end(), 0);
-  std::sort(byRadius.begin(), byRadius.end(),
-    [&diracs](int a, int b) { return dot(diracs[a], diracs[a]) < dot(diracs[b], diracs[b]); });
   std::vector<double> logRatio(n), ringSum(RadialStartRings, 0.0);
   std::vector<int> ringCount(RadialStartRings, 0);
   double mean = 0.0;
@@ -702,8 +704,11 @@ bool startHeights(const SourceMeasure& source, const std::vector<Vec2>& diracs,
     // Dirac lies far away (one 1e6 from the disk among 300 over it stopped at the start).
     evaluate(source, diracs, h, diagram, ev, result);
   }
-  const bool radial = radialStart && source.isUnitDisk() && ev.minMass > 0.0 &&
-    radialShareOfMassErrors(diracs, ev.cellMass, nu) >= RadialStartShare;
+  const std::vector<int> byRadius = radialStart && source.isUnitDisk() && ev.minMass > 0.0
+    ? idsByRadius(diracs)
+    : std::vector<int>();
+  const bool radial =
+    !byRadius.empty() && radialShareOfMassErrors(byRadius, ev.cellMass, nu) >= RadialStartShare;
   if (!mild || !(ev.minMass > 0.0))
   {
     std::vector<Height> shrunk(n);
@@ -712,7 +717,7 @@ bool startHeights(const SourceMeasure& source, const std::vector<Vec2>& diracs,
   }
   if (radial)
   {
-    std::vector<Height> radialHeights = radialStartHeights(diracs, nu);
+    std::vector<Height> radialHeights = radialStartHeights(diracs, byRadius, nu);
     keepNearerStart(source, diracs, nu, radialHeights, h, diagram, ev, result);
   }
   return false;
