@@ -13,7 +13,8 @@
 //
 //   otparam_param_benchmark [--repeat R] [--samples N] [--correction-decrease F]
 //                           [--thorough-correction] [--no-correction]
-//                           [--no-sample-scale-correction] [--subdivide K] [--progress-gaps]
+//                           [--no-sample-scale-correction] [--linear-growth] [--subdivide K]
+//                           [--progress-gaps]
 //                           [--composition-steps] [mesh ...]   (default: every shared mesh)
 #include "ForkedRun.h"
 #include "MeshFiles.h"
@@ -229,6 +230,8 @@ int main(int argc, char** argv)
       options.composition.correctAreas = false;
     else if (!std::strcmp(argv[i], "--no-sample-scale-correction"))
       options.composition.correctAtSampleScale = false;
+    else if (!std::strcmp(argv[i], "--linear-growth"))
+      options.transport.squareRootGrowth = false;
     else if (!std::strcmp(argv[i], "--subdivide") && i + 1 < argc)
       subdivide = std::max(0, std::atoi(argv[++i]));
     else if (!std::strcmp(argv[i], "--progress-gaps"))
@@ -240,7 +243,7 @@ int main(int argc, char** argv)
       std::fprintf(stderr,
         "unknown option %s\nusage: otparam_param_benchmark [--repeat R] [--samples N] "
         "[--correction-decrease F] [--thorough-correction] [--no-correction] "
-        "[--no-sample-scale-correction] [--subdivide K] [--progress-gaps] "
+        "[--no-sample-scale-correction] [--linear-growth] [--subdivide K] [--progress-gaps] "
         "[--composition-steps] [mesh ...]\n",
         argv[i]);
       return 2;

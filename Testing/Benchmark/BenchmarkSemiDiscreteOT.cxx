@@ -2,7 +2,7 @@
 // Gaussian-mixture masses, uniform disk source, tolerance 1e-10. Each size runs in a child
 // process so that its peak memory is its own; the table gives the median of the runs.
 //
-//   otparam_benchmark [--repeat R] [--contrast C] [--single-level] [N ...]
+//   otparam_benchmark [--repeat R] [--contrast C] [--single-level] [--linear-growth] [N ...]
 //                                                   (default N: 1000 10000 100000)
 #include "Common/SparseCholesky.h"
 #include "ForkedRun.h"
@@ -39,7 +39,7 @@ double seconds(std::chrono::steady_clock::time_point t0)
 }
 
 std::vector<Vec2> g_y;
-bool g_coarseToFine = true;
+bool g_coarseToFine = true, g_squareRootGrowth = true;
 std::vector<double> g_m;
 
 void makeProblem(size_t n, double contrast, unsigned seed)
@@ -102,6 +102,7 @@ Row runOnce(size_t n, double contrast, unsigned seed)
   const auto t0 = std::chrono::steady_clock::now();
   OTOptions options;
   options.coarseToFineStart = g_coarseToFine;
+  options.squareRootGrowth = g_squareRootGrowth;
   const OTResult r = solveSemiDiscreteOT(*disk, g_y, g_m, options);
   row.total = seconds(t0);
   row.iterations = r.iterations;
@@ -130,14 +131,17 @@ int main(int argc, char** argv)
       repeat = std::max(1, std::atoi(argv[++a]));
     else if (!std::strcmp(argv[a], "--single-level"))
       g_coarseToFine = false; // the start from the shrunk Voronoi diagram, for comparison
+    else if (!std::strcmp(argv[a], "--linear-growth"))
+      g_squareRootGrowth = false; // Newton's rows of mass for every cell, for comparison
     else if (!std::strcmp(argv[a], "--contrast") && a + 1 < argc)
       contrast = std::atof(argv[++a]);
     else if (argv[a][0] != '-' && std::atof(argv[a]) >= 1.0)
       sizes.push_back(static_cast<size_t>(std::atof(argv[a])));
     else
     {
-      std::fprintf(
-        stderr, "usage: %s [--repeat R] [--contrast C] [--single-level] [N ...]\n", argv[0]);
+      std::fprintf(stderr,
+        "usage: %s [--repeat R] [--contrast C] [--single-level] [--linear-growth] [N ...]\n",
+        argv[0]);
       return 2;
     }
   }

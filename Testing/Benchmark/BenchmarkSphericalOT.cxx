@@ -79,7 +79,7 @@ std::vector<double> bumpMasses(const std::vector<Vec3>& y, double contrast)
   return m;
 }
 
-bool g_bumps = false, g_singleLevel = false;
+bool g_bumps = false, g_singleLevel = false, g_squareRootGrowth = true;
 
 // One hull (the Voronoi diagram's build) and one factorization of its graph Laplacian with one
 // Dirac pinned, timed separately.
@@ -122,6 +122,7 @@ Row runOnce(size_t n, double contrast, unsigned seed)
   const auto t0 = std::chrono::steady_clock::now();
   OTOptions options;
   options.coarseToFineStart = !g_singleLevel;
+  options.squareRootGrowth = g_squareRootGrowth;
   const SphericalOTResult r = solveSphericalOT(y, m, options);
   row.total = seconds(t0);
   row.iterations = r.iterations;
@@ -153,12 +154,16 @@ int main(int argc, char** argv)
       g_bumps = true;
     else if (!std::strcmp(argv[a], "--single-level"))
       g_singleLevel = true;
+    else if (!std::strcmp(argv[a], "--linear-growth"))
+      g_squareRootGrowth = false;
     else if (argv[a][0] != '-' && std::atof(argv[a]) >= 4.0)
       sizes.push_back(static_cast<size_t>(std::atof(argv[a])));
     else
     {
       std::fprintf(stderr,
-        "usage: %s [--repeat R] [--contrast C] [--bumps] [--single-level] [N ...]\n", argv[0]);
+        "usage: %s [--repeat R] [--contrast C] [--bumps] [--single-level] [--linear-growth] [N "
+        "...]\n",
+        argv[0]);
       return 2;
     }
   }

@@ -66,6 +66,8 @@ struct NewtonOptions
   // seeds 1 / 2 paired on a quiet machine: 14.1 / 15.7 s with 4x the last step, 11.3 / 12.4 s
   // with twice it).
   bool fullStepFirst = true;
+  // Newton on sqrt(cell mass) for cells below half their masses (DampedNewton.cxx).
+  bool squareRootGrowth = true;
   // Called once per iteration with (iteration, relative error); return false to abort.
   std::function<bool(int, double)> progress;
 };

@@ -262,6 +262,7 @@ void solveByNewton(const SourceMeasure& source, const std::vector<Vec2>& diracs,
   newton.tolerance = options.tolerance;
   newton.maximumNumberOfIterations = options.maximumNumberOfIterations;
   newton.progress = options.progress;
+  newton.squareRootGrowth = options.squareRootGrowth;
   dampedNewton(problem, nu, h, newton, result);
 }
 

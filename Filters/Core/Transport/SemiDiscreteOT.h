@@ -38,6 +38,8 @@ struct OTOptions
   // Where the Diracs crowd towards the circle (unit-disk source), also try the radial map's
   // start (SemiDiscreteOT.cxx) and keep it when it is nearer the solution.
   bool radialStart = true;
+  // Newton steps aimed at sqrt(mass) for cells far below their masses (NewtonOptions).
+  bool squareRootGrowth = true;
   // Called once per Newton iteration with (iteration, relative error); return false to abort.
   std::function<bool(int, double)> progress;
 };

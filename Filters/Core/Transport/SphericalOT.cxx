@@ -201,6 +201,7 @@ void solveByNewton(const std::vector<Vec3>& diracs, const std::vector<double>& n
   newton.tolerance = options.tolerance;
   newton.maximumNumberOfIterations = options.maximumNumberOfIterations;
   newton.progress = options.progress;
+  newton.squareRootGrowth = options.squareRootGrowth;
   newton.fullStepFirst = false;
   dampedNewton(problem, nu, psi, newton, report);
 }
