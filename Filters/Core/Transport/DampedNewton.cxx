@@ -241,14 +241,14 @@ constexpr double GrowthRowsBelow = 0.5;
 double squareRootGrowthRows(
   const std::vector<double>& cellMass, const std::vector<double>& nu, std::vector<double>& g)
 {
+  // In place: a copy of g is 8 MB at 1e6 Diracs, beside the peak of the first evaluation.
   const size_t n = nu.size();
-  std::vector<double> rows(g);
   bool transformed = false;
   for (size_t i = 0; i < n; ++i)
   {
     if (cellMass[i] > 0.0 && cellMass[i] < GrowthRowsBelow * nu[i])
     {
-      rows[i] = 2.0 * (cellMass[i] - std::sqrt(cellMass[i] * nu[i]));
+      g[i] = 2.0 * (cellMass[i] - std::sqrt(cellMass[i] * nu[i]));
       transformed = true;
     }
   }
@@ -257,21 +257,21 @@ double squareRootGrowthRows(
     return 1.0;
   }
   double growth = 0.0, shrinkage = 0.0;
-  for (double r : rows)
+  for (double r : g)
   {
     (r < 0.0 ? growth : shrinkage) += std::abs(r);
   }
   double along = 0.0, squared = 0.0;
   for (size_t i = 0; i < n; ++i)
   {
-    if (rows[i] > 0.0)
+    if (g[i] > 0.0)
     {
-      rows[i] *= growth / shrinkage;
+      g[i] *= growth / shrinkage;
     }
-    along += rows[i] * g[i];
-    squared += g[i] * g[i];
+    const double newtonRow = cellMass[i] - nu[i];
+    along += g[i] * newtonRow;
+    squared += newtonRow * newtonRow;
   }
-  g.swap(rows);
   return along / squared;
 }
 
