@@ -235,7 +235,8 @@ constexpr double UselessStep = 1e-12;
 // down to balance. (Cells between a half and one of their masses keep their rows: with every
 // growing cell transformed, the balance near the solution is rounding noise and 1e4 Diracs of
 // contrast 1e6 stalled at 1e-8.) Returns the slope of |g|_2 along the new direction relative to
-// the Newton direction's, g . g' / |g|^2 in (0, 1], for the line search's decrease test.
+// the Newton direction's, g . g' / |g|^2 in (0, 1], for the line search's decrease test: below 1
+// exactly when some row was transformed.
 constexpr double GrowthRowsBelow = 0.5;
 
 double squareRootGrowthRows(
@@ -321,6 +322,7 @@ public:
       }
       const double slope =
         this->SquareRootGrowth ? squareRootGrowthRows(ev.cellMass, this->Nu, g) : 1.0;
+      const bool rowsTransformed = slope < 1.0;
       this->Problem.releaseBeforeSolve();
       trim();
       if (!this->System.solve(n, ev.coupling, g, this->Nu, d, this->residualTarget(), this->Report))
@@ -332,7 +334,7 @@ public:
       this->Problem.releaseCouplings();
       trim();
       const double lambda = this->searchStep(h, d, gnorm, slope);
-      if (slope < 1.0 && (lambda <= 0.0 || lambda < UselessStep))
+      if (rowsTransformed && lambda < UselessStep) // no step at all, or a useless one
       {
         // The transformed rows' direction found no step: Newton's own rows from here on (their
         // couplings, released above, come back with the current heights' evaluation).
@@ -360,7 +362,7 @@ public:
         this->Report.message = msg.str();
         return;
       }
-      if (slope < 1.0 && it > 0 && lambda < this->LastStep)
+      if (rowsTransformed && it > 0 && lambda < this->LastStep)
       {
         // Shorter steps than the last: the transformed rows no longer pay (a staged
         // transport's stage on the sphere crawled from 0.5 to 1e-9 with them and stalled).
