@@ -425,7 +425,11 @@ private:
 using AreaCorrection = AreaCorrectionOn<PlaneGeometry>;
 
 constexpr double PolishLogRatio = 0.05;
-constexpr int PolishSweeps = 50; // measured on hand_choi_53k: the largest error stops falling there
+// Measured 2026-11-28 (largest |log area ratio| after 1 / 20 / 50 polishing sweeps): still
+// falling at 50 where an untangled knot sits (bunny_holes_35k 2.35 / 0.90 / 0.59,
+// face_dense_gpp_5k 3.01 / 0.98 / 0.43), flat from ~20 elsewhere (hand_choi_53k 0.67 / 0.67 /
+// 0.67), where the late sweeps move few vertices and cost little.
+constexpr int PolishSweeps = 50;
 
 // Step 3's sweeps, for either domain: until the mean |log area ratio| (`mean(points)`) settles,
 // then the polishing of the worst. `report(fraction)` returns false to abort. Counts the sweeps
@@ -463,8 +467,7 @@ bool correctAreas(AreaCorrectionOn<Geometry>& correction,
   }
   // The mean settles long before the worst triangles (the sweeps spread corrections slowly
   // and the few vertices around an untangled knot need many): sweeps over just the vertices
-  // that still have a triangle off by more than 5% finish them cheaply (hand_choi_53k: the
-  // largest |log area ratio| 3.3 -> 0.6 for 0.3 s).
+  // that still have a triangle off by more than 5% finish them cheaply (PolishSweeps).
   correction.polishFrom(PolishLogRatio);
   for (int sweep = 0; sweep < std::min(options.maximumCorrectionSweeps, PolishSweeps); ++sweep)
   {
