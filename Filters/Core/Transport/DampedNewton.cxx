@@ -484,6 +484,16 @@ private:
 
 } // namespace
 
+NewtonOptions newtonOptionsOf(const OTOptions& options)
+{
+  NewtonOptions newton;
+  newton.tolerance = options.tolerance;
+  newton.maximumNumberOfIterations = options.maximumNumberOfIterations;
+  newton.progress = options.progress;
+  newton.squareRootGrowth = options.squareRootGrowth;
+  return newton;
+}
+
 void dampedNewton(NewtonProblem& problem, const std::vector<double>& nu, std::vector<Height>& h,
   const NewtonOptions& options, NewtonReport& report)
 {

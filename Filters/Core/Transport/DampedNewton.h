@@ -72,6 +72,10 @@ struct NewtonOptions
   std::function<bool(int, double)> progress;
 };
 
+// The transport options' share of the Newton iteration, the same for the plane and the sphere
+// (each domain then sets its own step rule, fullStepFirst).
+NewtonOptions newtonOptionsOf(const OTOptions& options);
+
 // Damped Newton from heights h whose cells are all non-empty (problem.current() evaluated at h)
 // to cell masses nu; h ends at the last accepted heights. Records histories and stops as
 // documented in NewtonReport.

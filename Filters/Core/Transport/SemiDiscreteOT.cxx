@@ -258,12 +258,7 @@ void solveByNewton(const SourceMeasure& source, const std::vector<Vec2>& diracs,
   const OTOptions& options, OTResult& result)
 {
   PlanarNewtonProblem problem(source, diracs, diagram, ev);
-  NewtonOptions newton;
-  newton.tolerance = options.tolerance;
-  newton.maximumNumberOfIterations = options.maximumNumberOfIterations;
-  newton.progress = options.progress;
-  newton.squareRootGrowth = options.squareRootGrowth;
-  dampedNewton(problem, nu, h, newton, result);
+  dampedNewton(problem, nu, h, newtonOptionsOf(options), result);
 }
 
 } // namespace

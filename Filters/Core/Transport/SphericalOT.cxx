@@ -197,11 +197,7 @@ void solveByNewton(const std::vector<Vec3>& diracs, const std::vector<double>& n
   const OTOptions& options, NewtonReport& report)
 {
   SphericalNewtonProblem problem(diracs, diagram, ev);
-  NewtonOptions newton;
-  newton.tolerance = options.tolerance;
-  newton.maximumNumberOfIterations = options.maximumNumberOfIterations;
-  newton.progress = options.progress;
-  newton.squareRootGrowth = options.squareRootGrowth;
+  NewtonOptions newton = newtonOptionsOf(options);
   newton.fullStepFirst = false;
   dampedNewton(problem, nu, psi, newton, report);
 }

@@ -17,6 +17,7 @@
 #include <cstdio>
 #include <numeric>
 #include <random>
+#include <utility>
 
 using namespace otparam;
 
@@ -605,6 +606,20 @@ std::vector<Vec2> crowdedTowardsAPointOfTheCircle(int n, double k)
   }
   return y;
 }
+// The same problem solved with `without` (a start or a step rule switched off) and with the
+// defaults; both must converge, the default to 1e-10 with the disk's whole mass.
+std::pair<OTResult, OTResult> solvedWithoutAndWith(
+  const std::vector<Vec2>& y, const std::vector<double>& m, const OTOptions& without)
+{
+  auto disk = makeUnitDiskSource();
+  std::pair<OTResult, OTResult> r{ solveSemiDiscreteOT(*disk, y, m, without),
+    solveSemiDiscreteOT(*disk, y, m) };
+  EXPECT_TRUE(r.first.converged) << r.first.message;
+  EXPECT_TRUE(r.second.converged) << r.second.message;
+  EXPECT_LE(r.second.relativeError, 1e-10);
+  EXPECT_NEAR(sum(r.second.cellMass), Pi, 1e-12 * Pi);
+  return r;
+}
 } // namespace
 
 TEST(SemiDiscreteOT, CellsOfManyScalesGrowBySquareRootRows)
@@ -612,19 +627,15 @@ TEST(SemiDiscreteOT, CellsOfManyScalesGrowBySquareRootRows)
   // Measured (3000 Diracs): k = 3, 23 Newton iterations with Newton's rows of mass, 11 with the
   // square-root rows; k = 4, Newton's rows reject every damping of the first step (relative
   // error 84), the square-root rows converge in 13.
-  auto disk = makeUnitDiskSource();
   const std::vector<double> m(3000, 1.0);
   OTOptions linear;
   linear.squareRootGrowth = false;
-  const auto y3 = crowdedTowardsAPointOfTheCircle(3000, 3.0);
-  const OTResult plain = solveSemiDiscreteOT(*disk, y3, m, linear);
-  const OTResult rooted = solveSemiDiscreteOT(*disk, y3, m);
-  ASSERT_TRUE(plain.converged) << plain.message;
-  ASSERT_TRUE(rooted.converged) << rooted.message;
-  EXPECT_LE(rooted.relativeError, 1e-10);
-  EXPECT_NEAR(sum(rooted.cellMass), Pi, 1e-12 * Pi);
+  const auto [plain, rooted] =
+    solvedWithoutAndWith(crowdedTowardsAPointOfTheCircle(3000, 3.0), m, linear);
+  ASSERT_FALSE(HasFailure());
   EXPECT_LE(rooted.iterations, 13);
   EXPECT_LT(2 * rooted.iterations, plain.iterations + 2);
+  auto disk = makeUnitDiskSource();
   const OTResult deeper = solveSemiDiscreteOT(*disk, crowdedTowardsAPointOfTheCircle(3000, 4.0), m);
   ASSERT_TRUE(deeper.converged) << deeper.message;
   EXPECT_LE(deeper.iterations, 15);
@@ -639,15 +650,10 @@ TEST(SemiDiscreteOT, CoarseToFineStartTakesFewerNewtonIterations)
   // Voronoi start. Measured: 26 Newton iterations single-level, 9 coarse-to-fine.
   const auto y = randomInDisk(30000, 7);
   const auto m = mixtureMasses(y, 1e4);
-  auto disk = makeUnitDiskSource();
   OTOptions singleLevel;
   singleLevel.coarseToFineStart = false;
-  const OTResult plain = solveSemiDiscreteOT(*disk, y, m, singleLevel);
-  const OTResult multiscale = solveSemiDiscreteOT(*disk, y, m);
-  ASSERT_TRUE(plain.converged) << plain.message;
-  ASSERT_TRUE(multiscale.converged) << multiscale.message;
-  EXPECT_LE(multiscale.relativeError, 1e-10);
-  EXPECT_NEAR(sum(multiscale.cellMass), Pi, 1e-12 * Pi);
+  const auto [plain, multiscale] = solvedWithoutAndWith(y, m, singleLevel);
+  ASSERT_FALSE(HasFailure());
   EXPECT_LE(multiscale.iterations, 13);
   EXPECT_LT(2 * multiscale.iterations, plain.iterations);
   std::printf("Newton iterations, 3e4 Diracs of contrast 1e4: single-level %d, coarse-to-fine %d\n",
