@@ -97,6 +97,62 @@ def square_fingers(lengths, n=24, closed=False):
     return make_domain(points, triangles)
 
 
+def quadruped(leg=2.0, tail=1.6, tail_radius=0.06, resolution=160):
+    """A procedural four-legged animal, closed (genus 0): an ellipsoid body with four legs
+    (capsules of radius 0.11 and length 0.8 + `leg`), a tail (a bent chain of capsules of
+    `tail_radius`, `tail` long), a neck and a head, blended by a smooth minimum and extracted by
+    flying edges on a grid of `resolution` cells along its longest side: a marching-cubes mesh
+    as scans give, slivers included. The default's legs hang about 2.5 below the body, L / rho
+    ~23, and its tail is L / rho ~24."""
+    import numpy as np
+    from vtkmodules.util.numpy_support import numpy_to_vtk
+    from vtkmodules.vtkCommonDataModel import vtkImageData
+    from vtkmodules.vtkFiltersCore import (vtkCleanPolyData, vtkFlyingEdges3D,
+                                           vtkPolyDataConnectivityFilter)
+
+    lo = np.array([-1.5 - tail, -0.8, -1.3 - leg])
+    hi = np.array([2.5, 0.8, 1.4 + 0.5 * tail])
+    n = np.ceil((hi - lo) / ((hi - lo).max() / resolution)).astype(int) + 1
+    grid = np.stack(np.meshgrid(*[np.linspace(lo[k], hi[k], n[k]) for k in range(3)],
+                                indexing="ij"), axis=-1)
+
+    def capsule(a, b, r):
+        a, b = np.array(a), np.array(b)
+        h = np.clip(((grid - a) @ (b - a)) / ((b - a) @ (b - a)), 0.0, 1.0)
+        return np.linalg.norm(grid - a - h[..., None] * (b - a), axis=-1) - r
+
+    def blend(f, g, k=0.08):
+        h = np.clip(0.5 + 0.5 * (g - f) / k, 0.0, 1.0)
+        return g * (1 - h) + f * h - k * h * (1 - h)
+
+    f = 0.45 * (np.linalg.norm(grid / np.array([1.3, 0.5, 0.45]), axis=-1) - 1.0)
+    for x in (-0.9, 0.9):
+        for y in (-0.25, 0.25):
+            f = blend(f, capsule((x, y, -0.1), (x, y, -0.9 - leg), 0.11))
+    start, along = np.array([-1.2, 0.0, 0.15]), np.array([-1.0, 0.0, 0.4]) / math.hypot(1.0, 0.4)
+    bend = [start + (k / 12) * tail * along + (0, 0, 0.1 * math.sin(k / 4)) for k in range(13)]
+    for a, b in zip(bend, bend[1:]):
+        f = blend(f, capsule(a, b, tail_radius), 0.03)
+    f = blend(f, capsule((1.1, 0, 0.2), (1.7, 0, 0.9), 0.18))
+    f = blend(f, 0.22 * (np.linalg.norm((grid - (1.95, 0, 1.0)) / (0.4, 0.22, 0.22), axis=-1) - 1))
+    image = vtkImageData()
+    image.SetDimensions(*(int(k) for k in n))
+    image.SetOrigin(*lo)
+    image.SetSpacing(*((hi - lo) / (n - 1)))
+    image.GetPointData().SetScalars(numpy_to_vtk(f.transpose(2, 1, 0).ravel().copy()))
+    surface = vtkFlyingEdges3D()
+    surface.SetInputData(image)
+    surface.SetValue(0, 0.0)
+    surface.ComputeNormalsOff()
+    largest = vtkPolyDataConnectivityFilter()
+    largest.SetInputConnection(surface.GetOutputPort())
+    largest.SetExtractionModeToLargestRegion()
+    clean = vtkCleanPolyData()
+    clean.SetInputConnection(largest.GetOutputPort())
+    clean.Update()
+    return clean.GetOutput()
+
+
 def run(length_over_radius, closed=False):
     param = vtkAreaPreservingParam()
     param.SetInputData(finger(length_over_radius, closed=closed))

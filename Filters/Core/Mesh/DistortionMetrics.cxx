@@ -6,6 +6,8 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <numeric>
+#include <utility>
 
 namespace otparam
 {
@@ -299,6 +301,44 @@ double rangeOf(const std::vector<double>& density)
 {
   const auto range = std::minmax_element(density.begin(), density.end());
   return range.first == density.end() ? 1.0 : *range.second / *range.first;
+}
+
+//------------------------------------------------------------------------------
+std::vector<double> densitiesAtAreaShares(
+  const SurfaceMesh& surface, const std::vector<double>& density, const std::vector<double>& shares)
+{
+  std::vector<std::pair<double, double>> byDensity(density.size());
+  double total = 0.0;
+  for (size_t t = 0; t < density.size(); ++t)
+  {
+    byDensity[t] = { density[t], triangleArea(surface, surface.triangles[t]) };
+    total += byDensity[t].second;
+  }
+  std::sort(byDensity.begin(), byDensity.end());
+  std::vector<double> values;
+  double below = 0.0;
+  size_t next = 0;
+  for (const double share : shares)
+  {
+    while (next + 1 < byDensity.size() && below + byDensity[next].second < share * total)
+    {
+      below += byDensity[next++].second;
+    }
+    values.push_back(byDensity.empty() ? 0.0 : byDensity[next].first);
+  }
+  return values;
+}
+
+//------------------------------------------------------------------------------
+double crowdingRange(const SurfaceMesh& surface, const std::vector<double>& density)
+{
+  const double whole = rangeOf(density);
+  if (whole <= CrowdedDensityRange)
+  {
+    return whole;
+  }
+  const double largest = *std::max_element(density.begin(), density.end());
+  return largest / densitiesAtAreaShares(surface, density, { CrowdingLowShare })[0];
 }
 
 } // namespace otparam

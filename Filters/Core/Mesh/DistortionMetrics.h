@@ -56,6 +56,24 @@ constexpr double CrowdedDensityRange = 1e12;
 // The largest over the smallest of a density's values (1 for none).
 double rangeOf(const std::vector<double>& density);
 
+// The densities below which lie the given shares of the surface: triangles taken by increasing
+// `density` (one value per triangle of `surface`), each weighing its area on the surface;
+// `shares` increasing.
+std::vector<double> densitiesAtAreaShares(const SurfaceMesh& surface,
+  const std::vector<double>& density, const std::vector<double>& shares);
+
+// The share of the surface, at its least dense end, that the crowding measures leave out: a
+// triangle that holds next to nothing of the surface can set the density's range by itself (a
+// sliver of a marching-cubes mesh, tiny on the surface but not in the map, lies 1e5 below the
+// rest; a stage's composition can leave such triangles too). Measured on procedural quadrupeds
+// (docs/design.md, "Crowding by the bulk of the surface").
+constexpr double CrowdingLowShare = 0.01;
+
+// How far a map crowds the surface: its largest density over its density at CrowdingLowShare
+// of the surface's area. That is never above rangeOf, which is returned where it is within
+// CrowdedDensityRange (no sort).
+double crowdingRange(const SurfaceMesh& surface, const std::vector<double>& density);
+
 } // namespace otparam
 
 #endif
