@@ -20,6 +20,9 @@ struct CompositionOptions
   double correctionRelativeDecrease = 0.01;
   // Each vertex's Gauss-Newton step is tried first at this multiple (then halved).
   double correctionOverrelaxation = 1.8;
+  // The polishing goes on past its 50 sweeps while a triangle is still off by more than a
+  // factor e (a knot the untangling left; AreaCorrection.h, KnotLogRatio).
+  bool polishKnots = true;
   // On the disk, the per-vertex sweeps begin after a few sweeps at the samples' scale
   // (SampleScaleCorrection.h), which lower the final mean angle distortion.
   bool correctAtSampleScale = true;

@@ -491,8 +491,10 @@ std::string transportStage(const AreaPreservingOptions& options, const Staging& 
   CompositionOptions compositionOptions = options.composition;
   compositionOptions.correctAreas = correct;
   // A stage's map must follow its transport and feeds the next stage's density: the stages
-  // keep the per-vertex sweeps alone (TestCrowding's stage counts were measured with them).
+  // keep the per-vertex sweeps alone, polished 50 sweeps (TestCrowding's stage counts were
+  // measured with them).
   compositionOptions.correctAtSampleScale = false;
+  compositionOptions.polishKnots = false;
   if (correct)
   {
     compositionOptions.targetAreaShares = stageAreaShares<Staging>(run, clamped);
