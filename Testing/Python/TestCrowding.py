@@ -32,7 +32,7 @@ failed, most of its mass within 8 degrees of one point; the stages now run again
 Moebius-rebalanced for the first stage's clamped density, and each fold they leave is healed
 apart, by a fan or by CGAL's hole filling of its rim)."""
 
-from crowding_meshes import finger, run, square_fingers
+from crowding_meshes import finger, opened_at, quadruped, run, square_fingers
 from otparam import vtkAreaPreservingParam
 from otparam_test_utils import MessageRecorder, check, field_value, finish, update_recorded
 
@@ -66,6 +66,22 @@ check(out.GetNumberOfPoints() > 0 and field_value(out, "MeanAbsLogAreaRatio") > 
       and "AreaCorrection is off" in warnings.text(),
       f"L/rho 10 without the area correction: a warning says the map is far from "
       f"area-preserving and to turn the correction on ({warnings.text()})")
+
+# A four-legged animal opened at its snout (crowding_meshes.quadruped, legs L / rho ~23, a
+# marching-cubes mesh; Domain Disk): until 2026-11-29 a sliver set the stages' clamp and range,
+# 7 stages ended at mean |log area ratio| 0.82 with no warning; now 3 stages, ~0.12.
+param = vtkAreaPreservingParam()
+param.SetDomain(1)
+errors, warnings = update_recorded(param, opened_at(quadruped(), 2.2))
+out = param.GetOutput()
+check(not errors.messages and out.GetNumberOfPoints() > 0 and field_value(out, "Domain") == 1
+      and field_value(out, "Converged") == 1 and field_value(out, "FlippedTriangles") == 0
+      and 1 <= field_value(out, "TransportStages") <= 5
+      and field_value(out, "MeanAbsLogAreaRatio") <= 0.2
+      and "far from area-preserving" not in warnings.text(),
+      f"quadruped opened at the snout, on the disk: staged, converged, no flip, mean |log area "
+      f"ratio| <= 0.2 ({errors.text()}{warnings.text()}"
+      f"{[field_value(out, k) for k in ('TransportStages', 'MeanAbsLogAreaRatio')] if out.GetNumberOfPoints() else ''})")
 
 # Two coarse square tubes of 60 and 30 cells (8 points per ring; the conformal image folds):
 # the stages from the folded image map them; the stages from the tip, which do better on the

@@ -153,6 +153,26 @@ def quadruped(leg=2.0, tail=1.6, tail_radius=0.06, resolution=160):
     return clean.GetOutput()
 
 
+def opened_at(surface, x):
+    """`surface` with the part beyond the plane at `x` (normal along +x) clipped off, as a user
+    opens a closed surface with VTK's clip filter: one boundary loop where the plane cuts."""
+    from vtkmodules.vtkCommonDataModel import vtkPlane
+    from vtkmodules.vtkFiltersCore import vtkClipPolyData, vtkCleanPolyData, vtkTriangleFilter
+
+    plane = vtkPlane()
+    plane.SetOrigin(x, 0.0, 0.0)
+    plane.SetNormal(-1.0, 0.0, 0.0)
+    clip = vtkClipPolyData()
+    clip.SetInputData(surface)
+    clip.SetClipFunction(plane)
+    clean = vtkCleanPolyData()
+    clean.SetInputConnection(clip.GetOutputPort())
+    triangles = vtkTriangleFilter()
+    triangles.SetInputConnection(clean.GetOutputPort())
+    triangles.Update()
+    return triangles.GetOutput()
+
+
 def run(length_over_radius, closed=False):
     param = vtkAreaPreservingParam()
     param.SetInputData(finger(length_over_radius, closed=closed))
