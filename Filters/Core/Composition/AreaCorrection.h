@@ -159,6 +159,7 @@ public:
   // by e^13 whatever the sweeps do).
   double largestCandidateLogRatio(double negligibleShare) const
   {
+    // The targets sum to 1 over the triangles, each listed once per corner in Entries.
     const double negligible = negligibleShare * 3.0 / static_cast<double>(this->Entries.size());
     double largest = 0.0;
     for (size_t v = 0; v < this->Active.size(); ++v)

@@ -522,20 +522,17 @@ void transportInStages(const AreaPreservingOptions& options, const Staging& stag
   run.sampling.status = Status();
   const auto keepGoing = [&options](double)
   { return !options.progress || options.progress("sampling", SamplingRange.start); };
+  // The current map's crowding, measured once per stage (a sort of its densities when crowded).
+  double range = crowdingRange(run.conformal.surface.mesh, run.startDensity);
   // A stage that left a fold is followed by another, which untangles it.
-  const auto moreStages = [&run]
-  {
-    return crowdingRange(run.conformal.surface.mesh, run.startDensity) > CrowdedDensityRange ||
-      (run.transportStages > 0 && Staging::folded(run));
-  };
-  while (moreStages() && run.status.ok())
+  while ((range > CrowdedDensityRange || (run.transportStages > 0 && Staging::folded(run))) &&
+    run.status.ok())
   {
     if (run.transportStages == MaximumTransportStages ||
       checkDensityValues(run.startDensity, "cell") != "")
     {
       break; // the last transport says what it can
     }
-    const double range = crowdingRange(run.conformal.surface.mesh, run.startDensity);
     const std::string error = transportStage(options, staging, run, keepGoing);
     if (run.status.aborted)
     {
@@ -555,6 +552,7 @@ void transportInStages(const AreaPreservingOptions& options, const Staging& stag
       return;
     }
     ++run.transportStages;
+    range = crowdingRange(run.conformal.surface.mesh, run.startDensity);
   }
 }
 
