@@ -4,10 +4,10 @@
 #ifndef OTPARAM_COMPOSITION_SAMPLEINTERPOLATION_H
 #define OTPARAM_COMPOSITION_SAMPLEINTERPOLATION_H
 
+#include "Common/PowerTestKernel.h"
 #include "Composition/Composition.h"
 #include "Composition/Untangling.h"
 
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Regular_triangulation_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
@@ -18,7 +18,7 @@ namespace otparam
 namespace composition
 {
 
-using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using K = PowerTestKernel;
 using Point = K::Weighted_point_2;
 using Vb = CGAL::Triangulation_vertex_base_with_info_2<int, K,
   CGAL::Regular_triangulation_vertex_base_2<K>>; // info: sample index

@@ -1,5 +1,6 @@
 #include "Transport/MultiscaleStart.h"
 
+#include "Common/PowerTestKernel.h"
 #include "Transport/SemiDiscreteOT.h"
 
 #include <CGAL/Convex_hull_traits_adapter_2.h>
@@ -26,11 +27,12 @@ using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Vb = CGAL::Triangulation_vertex_base_with_info_2<int, K>;
 using Tds = CGAL::Triangulation_data_structure_2<Vb>;
 using Delaunay = CGAL::Delaunay_triangulation_2<K, Tds>;
-using RegularVb =
-  CGAL::Triangulation_vertex_base_with_info_2<int, K, CGAL::Regular_triangulation_vertex_base_2<K>>;
+using RK = PowerTestKernel;
+using RegularVb = CGAL::Triangulation_vertex_base_with_info_2<int, RK,
+  CGAL::Regular_triangulation_vertex_base_2<RK>>;
 using RegularTds =
-  CGAL::Triangulation_data_structure_2<RegularVb, CGAL::Regular_triangulation_face_base_2<K>>;
-using Regular = CGAL::Regular_triangulation_2<K, RegularTds>;
+  CGAL::Triangulation_data_structure_2<RegularVb, CGAL::Regular_triangulation_face_base_2<RK>>;
+using Regular = CGAL::Regular_triangulation_2<RK, RegularTds>;
 
 // A walk-friendly order: Diracs by rows of a grid, alternating direction (boustrophedon), so
 // that consecutive point locations start next to each other.

@@ -1,6 +1,7 @@
 #include "Transport/PlanarPowerDiagram.h"
 
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include "Common/PowerTestKernel.h"
+
 #include <CGAL/Regular_triangulation_2.h>
 #include <CGAL/Regular_triangulation_face_base_2.h>
 #include <CGAL/Regular_triangulation_vertex_base_2.h>
@@ -14,7 +15,7 @@ namespace otparam
 {
 namespace
 {
-using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using K = PowerTestKernel;
 using Vbase = CGAL::Regular_triangulation_vertex_base_2<K>;
 using Vb = CGAL::Triangulation_vertex_base_with_info_2<int, K, Vbase>;
 using Fbase = CGAL::Regular_triangulation_face_base_2<K>;
