@@ -37,6 +37,9 @@ struct PowerDiagram::Triangulation
   };
   Flips reweightByFlips(const std::vector<Vec2>& diracs, const std::vector<Height>& heights,
     bool stopAtFirstHidden, std::vector<std::pair<int, Triangle>>& hidden);
+  // The same for Diracs that moved (same count and labels): false, with rt left unusable, where
+  // a hull vertex moved or a triangle turned over; else the flips from every edge.
+  bool moveVertices(const std::vector<Vec2>& diracs, const std::vector<Height>& heights);
   // reweightByFlips' steps: the vertices whose weight changed, the edges that can have turned
   // non-regular, and Lawson's flips from them.
   std::vector<Regular::Vertex_handle> setWeights(
@@ -139,6 +142,55 @@ std::vector<Regular::Vertex_handle> PowerDiagram::Triangulation::setWeights(
     }
   }
   return changed;
+}
+
+// The hull's vertices must stay: Lawson's flips never change the hull, and with the hull fixed
+// and every triangle still counter-clockwise the moved triangulation still tiles the hull (a
+// local homeomorphism fixed on the boundary), so the flips end at the regular triangulation.
+bool PowerDiagram::Triangulation::moveVertices(
+  const std::vector<Vec2>& diracs, const std::vector<Height>& heights)
+{
+  if (rt.dimension() != 2 || rt.number_of_hidden_vertices() != 0 ||
+    rt.number_of_vertices() != diracs.size())
+  {
+    return false;
+  }
+  const auto at = [&](Regular::Vertex_handle v)
+  {
+    const int i = v->info();
+    return i >= 0 && i < static_cast<int>(diracs.size()) ? &diracs[i] : nullptr;
+  };
+  auto hull = rt.incident_vertices(rt.infinite_vertex()), end = hull;
+  do
+  {
+    const Vec2* y = at(hull);
+    const BarePoint& p = hull->point().point();
+    if (!y || p.x() != y->x || p.y() != y->y)
+    {
+      return false;
+    }
+  } while (++hull != end);
+  for (auto v = rt.finite_vertices_begin(); v != rt.finite_vertices_end(); ++v)
+  {
+    const Vec2* y = at(v);
+    if (!y)
+    {
+      return false;
+    }
+    const int i = v->info();
+    v->set_point(WeightedPoint(BarePoint(y->x, y->y), weight(*y, heights[i])));
+  }
+  const auto orientation = rt.geom_traits().orientation_2_object();
+  for (auto f = rt.finite_faces_begin(); f != rt.finite_faces_end(); ++f)
+  {
+    if (orientation(f->vertex(0)->point().point(), f->vertex(1)->point().point(),
+          f->vertex(2)->point().point()) != CGAL::LEFT_TURN)
+    {
+      return false;
+    }
+  }
+  settled = false; // every edge is checked
+  return true;
 }
 
 std::vector<Regular::Edge> PowerDiagram::Triangulation::edgesToCheck(
@@ -322,9 +374,17 @@ PowerDiagram::Triangulation* PowerDiagram::triangulate(const std::vector<Vec2>& 
   const bool sameDiracs = Kept && triangulates(Kept->rt, diracs);
   std::vector<std::pair<int, Triangle>> certainlyHidden;
   using Flips = Triangulation::Flips;
-  const Flips flips = sameDiracs
-    ? Kept->reweightByFlips(diracs, heights, whenHidden == WhenHidden::StopAtFirst, certainlyHidden)
-    : Flips::Failed;
+  const bool stopAtFirst = whenHidden == WhenHidden::StopAtFirst;
+  Flips flips = Flips::Failed;
+  if (sameDiracs)
+  {
+    flips = Kept->reweightByFlips(diracs, heights, stopAtFirst, certainlyHidden);
+  }
+  else if (Kept && Kept->moveVertices(diracs, heights))
+  {
+    std::vector<Regular::Edge> stack = Kept->edgesToCheck({});
+    flips = Kept->flip(stack, stopAtFirst, certainlyHidden);
+  }
   if (flips == Flips::HidesADirac && whenHidden != WhenHidden::FindAll)
   {
     // The kept triangulation, where the flips stopped, is still one of all the points.

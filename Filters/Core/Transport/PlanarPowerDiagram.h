@@ -32,6 +32,9 @@ public:
     ReportSome, // no cells; hidden() and hiddenFace() for the Diracs found certainly hidden
     StopAtFirst // no cells; hidden() for the first Dirac found certainly hidden
   };
+  // A build for the Diracs of the last one under new heights flips its triangulation; so does
+  // a build for the same number of Diracs moved a little (a Lloyd step), when the hull's Diracs
+  // stay and no triangle turns over; anything else is inserted afresh.
   void build(const std::vector<Vec2>& diracs, const std::vector<Height>& heights,
     WhenHidden whenHidden = WhenHidden::FindAll);
 

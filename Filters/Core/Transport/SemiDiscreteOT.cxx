@@ -907,8 +907,14 @@ OTResult solveSemiDiscreteOT(const SourceMeasure& source, const std::vector<Vec2
 CellMeasures computeCellMeasures(
   const SourceMeasure& source, const std::vector<Vec2>& diracs, const std::vector<double>& heights)
 {
-  OTResult unusedTiming;
   PowerDiagram diagram;
+  return computeCellMeasures(source, diracs, heights, diagram);
+}
+
+CellMeasures computeCellMeasures(const SourceMeasure& source, const std::vector<Vec2>& diracs,
+  const std::vector<double>& heights, PowerDiagram& diagram)
+{
+  OTResult unusedTiming;
   Evaluation ev;
   evaluate(source, shiftedOntoSource(source, diracs),
     std::vector<Height>(heights.begin(), heights.end()), diagram, ev, unusedTiming,

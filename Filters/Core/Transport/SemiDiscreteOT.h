@@ -80,6 +80,11 @@ struct CellMeasures
 };
 CellMeasures computeCellMeasures(
   const SourceMeasure& source, const std::vector<Vec2>& diracs, const std::vector<double>& heights);
+// The same in `diagram`, which keeps its triangulation for the next call: a Lloyd step's moved
+// Diracs are then triangulated by flips (PowerDiagram::build).
+class PowerDiagram;
+CellMeasures computeCellMeasures(const SourceMeasure& source, const std::vector<Vec2>& diracs,
+  const std::vector<double>& heights, PowerDiagram& diagram);
 
 // Geometry of the power diagram for given heights, for display and for the VTK outputs.
 struct PowerDiagramGeometry
