@@ -330,7 +330,8 @@ std::vector<double> densitiesAtAreaShares(
 }
 
 //------------------------------------------------------------------------------
-double crowdingRange(const SurfaceMesh& surface, const std::vector<double>& density)
+double crowdingRange(
+  const SurfaceMesh& surface, const std::vector<double>& density, double lowShare)
 {
   const double whole = rangeOf(density);
   if (whole <= CrowdedDensityRange)
@@ -338,7 +339,7 @@ double crowdingRange(const SurfaceMesh& surface, const std::vector<double>& dens
     return whole;
   }
   const double largest = *std::max_element(density.begin(), density.end());
-  return largest / densitiesAtAreaShares(surface, density, { CrowdingLowShare })[0];
+  return largest / densitiesAtAreaShares(surface, density, { lowShare })[0];
 }
 
 } // namespace otparam

@@ -69,10 +69,11 @@ std::vector<double> densitiesAtAreaShares(const SurfaceMesh& surface,
 // (docs/design.md, "Crowding by the bulk of the surface").
 constexpr double CrowdingLowShare = 0.01;
 
-// How far a map crowds the surface: its largest density over its density at CrowdingLowShare
-// of the surface's area. That is never above rangeOf, which is returned where it is within
-// CrowdedDensityRange (no sort).
-double crowdingRange(const SurfaceMesh& surface, const std::vector<double>& density);
+// How far a map crowds the surface: its largest density over its density at `lowShare`
+// (CrowdingLowShare; 0: the smallest) of the surface's area. That is never above rangeOf,
+// which is returned where it is within CrowdedDensityRange (no sort).
+double crowdingRange(const SurfaceMesh& surface, const std::vector<double>& density,
+  double lowShare = CrowdingLowShare);
 
 } // namespace otparam
 

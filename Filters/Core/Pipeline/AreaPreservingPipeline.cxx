@@ -178,10 +178,10 @@ constexpr double MaximumRecentring = 0.9;
 // the rest (a procedural quadruped's marching-cubes mesh after its first stage: 7.5e-6 against
 // 0.64 at 1% of the surface) had made every later clamp so low that 30 stages left the legs
 // crowded, and the map at mean |log area ratio| 0.44 (docs/design.md).
-std::vector<double> clampedForStage(
-  const SurfaceMesh& surface, const std::vector<double>& density, double range)
+std::vector<double> clampedForStage(const SurfaceMesh& surface, const std::vector<double>& density,
+  double range, double lowShare = CrowdingLowShare)
 {
-  const double lowest = densitiesAtAreaShares(surface, density, { CrowdingLowShare })[0];
+  const double lowest = densitiesAtAreaShares(surface, density, { lowShare })[0];
   std::vector<double> clamped = density;
   for (double& g : clamped)
   {
@@ -294,6 +294,7 @@ struct DiskStaging
   // their relative precision at the origin where the usual map folds them.
   std::vector<Vec2> centredStart;
   double densityRange = StageDensityRange;
+  double lowShare = CrowdingLowShare;
   SamplingStage sample(const AreaPreservingResult& run, const std::vector<double>& density,
     const SamplerOptions& options) const
   {
@@ -390,14 +391,18 @@ struct SphereStaging
   // in turn, StageBalanceOffsets, were chosen on TestCrowding's closed finger (docs/design.md).
   double rebalanceOffset = 0.0;
   double densityRange = StageDensityRange;
+  // The share of the surface below the density that sets the clamp and the crowding
+  // (crowdingRange); 0, the smallest density, is the sphere's last resort (parameterizeSphere).
+  double lowShare = CrowdingLowShare;
   void prepare(SphereParameterizationResult& run) const
   {
     if (!(this->rebalanceOffset > 0.0) || run.transportStages > 0)
     {
       return;
     }
-    const std::vector<double> mass = stageAreaShares<SphereStaging>(
-      run, clampedForStage(run.conformal.surface.mesh, run.startDensity, this->densityRange));
+    const std::vector<double> mass = stageAreaShares<SphereStaging>(run,
+      clampedForStage(
+        run.conformal.surface.mesh, run.startDensity, this->densityRange, this->lowShare));
     balanceMeasure(
       run.conformal.surface.mesh.triangles, mass, run.startSphere, this->rebalanceOffset, 50);
     std::vector<double> perPoint;
@@ -455,8 +460,8 @@ std::string transportStage(const AreaPreservingOptions& options, const Staging& 
   SamplerOptions samplerOptions = options.sampling;
   samplerOptions.progress = keepGoing;
   staging.prepare(run);
-  const std::vector<double> clamped =
-    clampedForStage(run.conformal.surface.mesh, run.startDensity, staging.densityRange);
+  const std::vector<double> clamped = clampedForStage(
+    run.conformal.surface.mesh, run.startDensity, staging.densityRange, staging.lowShare);
   // A folded start has no areas to aim at; its stage only widens the crowd, and the next one,
   // once the fold is untangled, corrects (correcting around a fold left the fold's rim too
   // long for a stage's sampler at L / rho = 80).
@@ -523,7 +528,7 @@ void transportInStages(const AreaPreservingOptions& options, const Staging& stag
   const auto keepGoing = [&options](double)
   { return !options.progress || options.progress("sampling", SamplingRange.start); };
   // The current map's crowding, measured once per stage (a sort of its densities when crowded).
-  double range = crowdingRange(run.conformal.surface.mesh, run.startDensity);
+  double range = crowdingRange(run.conformal.surface.mesh, run.startDensity, staging.lowShare);
   // A stage that left a fold is followed by another, which untangles it.
   while ((range > CrowdedDensityRange || (run.transportStages > 0 && Staging::folded(run))) &&
     run.status.ok())
@@ -552,7 +557,7 @@ void transportInStages(const AreaPreservingOptions& options, const Staging& stag
       return;
     }
     ++run.transportStages;
-    range = crowdingRange(run.conformal.surface.mesh, run.startDensity);
+    range = crowdingRange(run.conformal.surface.mesh, run.startDensity, staging.lowShare);
   }
 }
 
@@ -1033,16 +1038,25 @@ SphereParameterizationResult parameterizeSphere(
     {
       transportInStages(options, SphereStaging{}, run);
       // A stage failed: the stages again, the first from a start rebalanced for it, then with
-      // the narrower clamp.
-      for (const double range : { StageDensityRange, NarrowStageDensityRange })
+      // the narrower clamp; then all of it with the clamp and the crowding set by the smallest
+      // density instead of the bulk's (the rule before 2026-11-29, whose chains mapped the
+      // closed finger at L / rho = 60 and 65 where the bulk's fail).
+      const auto failed = [&] { return !run.sampling.status.ok() && !run.sampling.status.aborted; };
+      for (const double lowShare : { CrowdingLowShare, 0.0 })
       {
-        for (const double offset : StageBalanceOffsets)
+        if (lowShare == 0.0 && failed())
         {
-          if (run.sampling.status.ok() || run.sampling.status.aborted)
+          transportInStages(options, SphereStaging{ 0.0, StageDensityRange, 0.0 }, run);
+        }
+        for (const double range : { StageDensityRange, NarrowStageDensityRange })
+        {
+          for (const double offset : StageBalanceOffsets)
           {
-            break;
+            if (failed())
+            {
+              transportInStages(options, SphereStaging{ offset, range, lowShare }, run);
+            }
           }
-          transportInStages(options, SphereStaging{ offset, range }, run);
         }
       }
       if (!run.sampling.status.ok())
