@@ -1,6 +1,6 @@
 // The filtered power test (Common/PowerTestKernel.h): every sign it certifies is the exact one,
 // it leaves exact ties and near ties to the exact predicate, and regular triangulations built
-// with it are the ones CGAL's kernel builds.
+// with it are the ones CGAL's kernel builds, stored in the same order.
 #include "Common/PowerTestKernel.h"
 
 #include <CGAL/Regular_triangulation_2.h>
@@ -183,14 +183,13 @@ std::vector<std::array<int, 3>> regularFaces(const std::vector<Site>& sites)
       i);
   }
   Regular rt(points.begin(), points.end());
+  // In storage order, each face's vertices as stored: the cells are built and integrated in
+  // this order, so the same order means the same bits downstream.
   std::vector<std::array<int, 3>> faces;
   for (auto f = rt.finite_faces_begin(); f != rt.finite_faces_end(); ++f)
   {
-    std::array<int, 3> face{ f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info() };
-    std::rotate(face.begin(), std::min_element(face.begin(), face.end()), face.end());
-    faces.push_back(face);
+    faces.push_back({ f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info() });
   }
-  std::sort(faces.begin(), faces.end());
   return faces;
 }
 
