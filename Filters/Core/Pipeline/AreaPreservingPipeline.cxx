@@ -1036,27 +1036,27 @@ SphereParameterizationResult parameterizeSphere(
     },
     [&]
     {
-      transportInStages(options, SphereStaging{}, run);
-      // A stage failed: the stages again, the first from a start rebalanced for it, then with
-      // the narrower clamp; then all of it with the clamp and the crowding set by the smallest
-      // density instead of the bulk's (the rule before 2026-11-29, whose chains mapped the
-      // closed finger at L / rho = 60 and 65 where the bulk's fail).
-      const auto failed = [&] { return !run.sampling.status.ok() && !run.sampling.status.aborted; };
+      // The stages from the conformal map; where a stage fails, again from a start rebalanced
+      // for the first stage, then with the narrower clamp; then all of it with the clamp and the
+      // crowding set by the smallest density instead of the bulk's (the rule before 2026-11-29,
+      // whose chains mapped the closed finger at L / rho = 60 and 65 where the bulk's fail).
+      std::vector<SphereStaging> attempts;
       for (const double lowShare : { CrowdingLowShare, 0.0 })
       {
-        if (lowShare == 0.0 && failed())
-        {
-          transportInStages(options, SphereStaging{ 0.0, StageDensityRange, 0.0 }, run);
-        }
+        attempts.push_back(SphereStaging{ 0.0, StageDensityRange, lowShare });
         for (const double range : { StageDensityRange, NarrowStageDensityRange })
         {
           for (const double offset : StageBalanceOffsets)
           {
-            if (failed())
-            {
-              transportInStages(options, SphereStaging{ offset, range, lowShare }, run);
-            }
+            attempts.push_back(SphereStaging{ offset, range, lowShare });
           }
+        }
+      }
+      for (std::size_t k = 0; k < attempts.size(); ++k)
+      {
+        if (k == 0 || (!run.sampling.status.ok() && !run.sampling.status.aborted))
+        {
+          transportInStages(options, attempts[k], run);
         }
       }
       if (!run.sampling.status.ok())

@@ -37,8 +37,11 @@ struct PowerDiagram::Triangulation
   };
   Flips reweightByFlips(const std::vector<Vec2>& diracs, const std::vector<Height>& heights,
     bool stopAtFirstHidden, std::vector<std::pair<int, Triangle>>& hidden);
-  // The same for Diracs that moved (same count and labels): false, with rt left unusable, where
-  // a hull vertex moved or a triangle turned over; else the flips from every edge.
+  // The same for Diracs that moved (same count and labels): the vertices moved, then the flips
+  // from every edge; Failed, with rt left unusable, where a hull vertex moved or a triangle
+  // turned over.
+  Flips moveByFlips(const std::vector<Vec2>& diracs, const std::vector<Height>& heights,
+    bool stopAtFirstHidden, std::vector<std::pair<int, Triangle>>& hidden);
   bool moveVertices(const std::vector<Vec2>& diracs, const std::vector<Height>& heights);
   // reweightByFlips' steps: the vertices whose weight changed, the edges that can have turned
   // non-regular, and Lawson's flips from them.
@@ -191,6 +194,19 @@ bool PowerDiagram::Triangulation::moveVertices(
   }
   settled = false; // every edge is checked
   return true;
+}
+
+PowerDiagram::Triangulation::Flips PowerDiagram::Triangulation::moveByFlips(
+  const std::vector<Vec2>& diracs, const std::vector<Height>& heights, bool stopAtFirstHidden,
+  std::vector<std::pair<int, Triangle>>& hidden)
+{
+  hidden.clear();
+  if (!this->moveVertices(diracs, heights))
+  {
+    return Flips::Failed;
+  }
+  std::vector<Regular::Edge> stack = this->edgesToCheck({});
+  return this->flip(stack, stopAtFirstHidden, hidden);
 }
 
 std::vector<Regular::Edge> PowerDiagram::Triangulation::edgesToCheck(
@@ -380,10 +396,9 @@ PowerDiagram::Triangulation* PowerDiagram::triangulate(const std::vector<Vec2>& 
   {
     flips = Kept->reweightByFlips(diracs, heights, stopAtFirst, certainlyHidden);
   }
-  else if (Kept && Kept->moveVertices(diracs, heights))
+  else if (Kept)
   {
-    std::vector<Regular::Edge> stack = Kept->edgesToCheck({});
-    flips = Kept->flip(stack, stopAtFirst, certainlyHidden);
+    flips = Kept->moveByFlips(diracs, heights, stopAtFirst, certainlyHidden);
   }
   if (flips == Flips::HidesADirac && whenHidden != WhenHidden::FindAll)
   {
