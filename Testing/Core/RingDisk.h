@@ -71,15 +71,18 @@ struct PlanarMesh
   std::vector<Triangle> triangles;
 };
 
-// The unit disk as a flat ring disk: boundary points on the circle.
-inline PlanarMesh makePlanarDisk(int rings)
+// The unit disk as a flat ring disk: boundary points on the circle. With a `crowding` c > 0,
+// ring t at radius exp(-c (1 - t)) instead of t: triangles shrinking towards the centre by e^c,
+// as a conformal image's extremity.
+inline PlanarMesh makePlanarDisk(int rings, double crowding = 0.0)
 {
   const RingDisk disk = makeRingDisk(rings);
   PlanarMesh mesh;
   for (size_t v = 0; v < disk.t.size(); ++v)
   {
-    mesh.points.push_back(
-      { disk.t[v] * std::cos(disk.azimuth[v]), disk.t[v] * std::sin(disk.azimuth[v]) });
+    const double r =
+      crowding > 0.0 && disk.t[v] > 0.0 ? std::exp(-crowding * (1.0 - disk.t[v])) : disk.t[v];
+    mesh.points.push_back({ r * std::cos(disk.azimuth[v]), r * std::sin(disk.azimuth[v]) });
   }
   mesh.triangles = disk.triangles;
   return mesh;

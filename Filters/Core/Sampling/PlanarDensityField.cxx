@@ -311,6 +311,8 @@ void DensityField::buildSearchTrees()
     box.value = this->PerTriangle.empty() ? 0.0 : this->PerTriangle[t];
   }
   this->TriangleTree = BoxTree(std::move(triangleBoxes));
+  this->Walk =
+    TriangleWalk(this->Points, this->Triangles, [this](Vec2 x) { return this->search(x); });
   this->CentroidBySlot.clear();
   if (this->PerTriangle.empty())
   {
@@ -349,6 +351,14 @@ void DensityField::buildSearchTrees()
 }
 
 int DensityField::locate(Vec2 x) const
+{
+  const int walked = this->Walk.locate(x, this->Points, this->Triangles);
+  return walked >= 0 ? walked : this->search(x);
+}
+
+// The first triangle in the tree's order whose barycentric coordinates at x are all >= -1e-12,
+// else -1e-9 (points on the boundary, rounded off it).
+int DensityField::search(Vec2 x) const
 {
   for (double slack : { 1e-12, 1e-9 })
   {
@@ -516,13 +526,55 @@ double DensityField::valueAtCentroid(std::size_t t) const
   return valueIn(t, (1.0 / 3.0) * (Points[tri[0]] + Points[tri[1]] + Points[tri[2]]));
 }
 
+// maxInsideTriangle's maximum over the points or triangle centroids inside abc, found by the
+// triangles around `seed` (which holds abc's centre) when few of them meet abc: the largest of
+// the same values the box tree's search takes (a maximum, whatever the order), without the
+// search. False, `largest` untouched, when there are more or abc leaves the triangles.
+bool DensityField::maximizeNearby(int seed, Vec2 a, Vec2 b, Vec2 c, double& largest) const
+{
+  double found = largest;
+  const bool all = this->Walk.visitMeeting(seed, a, b, c, this->Points, this->Triangles,
+    [&](int t)
+    {
+      const Triangle& tri = this->Triangles[t];
+      if (!this->PerTriangle.empty())
+      {
+        const Vec2 centroid =
+          (1.0 / 3.0) * (this->Points[tri[0]] + this->Points[tri[1]] + this->Points[tri[2]]);
+        if (inside(centroid, a, b, c, 0.0))
+        {
+          found = std::max(found, this->PerTriangle[t]);
+        }
+        return;
+      }
+      for (int v : tri)
+      {
+        if (inside(this->Points[v], a, b, c, 0.0))
+        {
+          found = std::max(found, this->PerPoint[v]);
+        }
+      }
+    });
+  if (all)
+  {
+    largest = found;
+  }
+  return all;
+}
+
 double DensityField::maxInsideTriangle(Vec2 a, Vec2 b, Vec2 c, double atLeast) const
 {
   if (cross(b - a, c - a) < 0.0)
   {
     std::swap(b, c);
   }
-  double largest = std::max(atLeast, value((1.0 / 3.0) * (a + b + c)));
+  const Vec2 centre = (1.0 / 3.0) * (a + b + c);
+  const int seed = this->locate(centre);
+  double largest = std::max(atLeast, seed >= 0 ? this->valueIn(seed, centre) : this->value(centre));
+  if (seed >= 0 && this->maximizeNearby(seed, a, b, c, largest))
+  {
+    return largest;
+  }
   const Vec2 lo = { std::min({ a.x, b.x, c.x }), std::min({ a.y, b.y, c.y }) };
   const Vec2 hi = { std::max({ a.x, b.x, c.x }), std::max({ a.y, b.y, c.y }) };
   // A box lies outside the (counter-clockwise) triangle when even its corner furthest to the

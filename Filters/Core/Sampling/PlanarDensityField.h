@@ -6,6 +6,7 @@
 
 #include "Common/BoxTree.h"
 #include "Common/Geometry.h"
+#include "Common/TriangleWalk.h"
 #include "Transport/PlanarSource.h"
 
 #include <memory>
@@ -69,7 +70,9 @@ public:
 private:
   DensityField() = default;
   int locate(Vec2 x) const; // triangle containing x, or -1
+  int search(Vec2 x) const; // the same, by TriangleTree alone
   double valueIn(std::size_t t, Vec2 x) const; // the density of triangle t at x
+  bool maximizeNearby(int seed, Vec2 a, Vec2 b, Vec2 c, double& largest) const;
   bool traceBoundaryLoops(std::string& error);
   bool checkLoopsDoNotCross(const std::unordered_map<int, int>& next, std::string& error) const;
   // The steps of create(), each "" or its message.
@@ -90,6 +93,7 @@ private:
   bool UnitDisk = false;
   double Integral = 0.0, Area = 0.0;
   BoxTree TriangleTree;          // item = triangle, value = PerTriangle (0 if per point)
+  TriangleWalk Walk;             // answers most of locate's queries before TriangleTree
   BoxTree PointTree;             // per-point densities only: item = used point
   // Per-triangle densities: each triangle's centroid in TriangleTree's slot order, so that a
   // maximum query reads them leaf by leaf rather than gathering corners across the mesh (the
