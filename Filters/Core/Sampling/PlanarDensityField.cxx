@@ -311,8 +311,6 @@ void DensityField::buildSearchTrees()
     box.value = this->PerTriangle.empty() ? 0.0 : this->PerTriangle[t];
   }
   this->TriangleTree = BoxTree(std::move(triangleBoxes));
-  this->Walk =
-    TriangleWalk(this->Points, this->Triangles, [this](Vec2 x) { return this->search(x); });
   this->CentroidBySlot.clear();
   if (this->PerTriangle.empty())
   {
@@ -348,6 +346,19 @@ void DensityField::buildSearchTrees()
     }
   }
   this->BoundaryTree = BoxTree(std::move(edgeBoxes));
+}
+
+// Measured (2026-11-29, --repeat 3): on otparam_sampler_benchmark's even 136k-triangle mesh the
+// walk saves 5% at 2e4 samples, 15% at 1e5 and 20% at 2e5; on the conformal densities of
+// hand_choi_53k and bust_aphrodite_56k (106k and 112k triangles, crowded) at 5000 and 5e4
+// samples it was within this machine's noise either way, while its grid and neighbours cost
+// 3-6 ms to build. So the walk waits for samplings at least as numerous as the triangles.
+void DensityField::prepareForQueries(long long expectedSamples) const
+{
+  if (!this->Walk.built() && expectedSamples >= static_cast<long long>(this->Triangles.size()))
+  {
+    this->Walk = TriangleWalk(this->Points, this->Triangles);
+  }
 }
 
 int DensityField::locate(Vec2 x) const
@@ -526,12 +537,29 @@ double DensityField::valueAtCentroid(std::size_t t) const
   return valueIn(t, (1.0 / 3.0) * (Points[tri[0]] + Points[tri[1]] + Points[tri[2]]));
 }
 
+// Above this ratio of abc's area to that of the triangle holding its centre, maximizeNearby
+// leaves the maximum to the box tree: on hand_choi_53k's crowded conformal density a search
+// of the triangles around gave up at its 48 triangles for most refinement triangles, and the
+// sampler took 0.32 s instead of 0.17.
+constexpr double NearbyAreaRatio = 6.0;
+
 // maxInsideTriangle's maximum over the points or triangle centroids inside abc, found by the
 // triangles around `seed` (which holds abc's centre) when few of them meet abc: the largest of
 // the same values the box tree's search takes (a maximum, whatever the order), without the
 // search. False, `largest` untouched, when there are more or abc leaves the triangles.
 bool DensityField::maximizeNearby(int seed, Vec2 a, Vec2 b, Vec2 c, double& largest) const
 {
+  if (!this->Walk.built())
+  {
+    return false;
+  }
+  const Triangle& held = this->Triangles[seed];
+  if (std::abs(cross(b - a, c - a)) > NearbyAreaRatio *
+      std::abs(cross(this->Points[held[1]] - this->Points[held[0]],
+        this->Points[held[2]] - this->Points[held[0]])))
+  {
+    return false; // many triangles to visit: the tree's pruning does better
+  }
   double found = largest;
   const bool all = this->Walk.visitMeeting(seed, a, b, c, this->Points, this->Triangles,
     [&](int t)

@@ -30,6 +30,10 @@ public:
     const std::vector<Triangle>& triangles, const std::vector<double>& perPoint,
     const std::vector<double>& perTriangle, std::string& error);
 
+  // Readies the queries for a sampling of `expectedSamples` samples: from as many samples as
+  // triangles, they first walk from a seed triangle (Common/TriangleWalk.h), with the same
+  // answers. Not thread-safe: call before any query.
+  void prepareForQueries(long long expectedSamples) const;
   // Density at x (x outside the domain: the value at the nearest point of the domain).
   double value(Vec2 x) const;
   // value() at the centroid of triangle t, without the search (the centroid lies in t).
@@ -93,7 +97,7 @@ private:
   bool UnitDisk = false;
   double Integral = 0.0, Area = 0.0;
   BoxTree TriangleTree;          // item = triangle, value = PerTriangle (0 if per point)
-  TriangleWalk Walk;             // answers most of locate's queries before TriangleTree
+  mutable TriangleWalk Walk;     // prepareForQueries: answers most queries before TriangleTree
   BoxTree PointTree;             // per-point densities only: item = used point
   // Per-triangle densities: each triangle's centroid in TriangleTree's slot order, so that a
   // maximum query reads them leaf by leaf rather than gathering corners across the mesh (the

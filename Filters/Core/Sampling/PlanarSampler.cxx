@@ -1599,6 +1599,7 @@ SamplerResult sampleDensity(const DensityField& field, const SamplerOptions& opt
   }
   result.sourceMass = field.isUnitDisk() ? Pi : field.area();
   auto t0 = Clock::now();
+  field.prepareForQueries(options.numberOfSamples);
 
   if (options.mode == SamplingMode::MeshVertices)
   {

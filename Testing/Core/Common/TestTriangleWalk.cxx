@@ -88,8 +88,7 @@ std::vector<Vec2> queries(const Mesh& mesh, size_t& ordinary)
 // ordinary queries inside the mesh answered.
 void checkWalk(const Mesh& mesh, double leastShareAnswered)
 {
-  const TriangleWalk walk(
-    mesh.points, mesh.triangles, [&mesh](Vec2 x) { return mesh.firstHolding(x); });
+  const TriangleWalk walk(mesh.points, mesh.triangles);
   size_t ordinary = 0;
   const std::vector<Vec2> x = queries(mesh, ordinary);
   int answered = 0, inside = 0;
@@ -125,7 +124,7 @@ TEST(TriangleWalk, AnswersOnlyWhereOneTriangleHoldsThePointInACrowdedMesh)
 
 TEST(TriangleWalk, EmptyMeshAnswersNothing)
 {
-  const TriangleWalk walk({}, {}, [](Vec2) { return -1; });
+  const TriangleWalk walk({}, {});
   EXPECT_EQ(walk.locate({ 0.0, 0.0 }, {}, {}), -1);
 }
 

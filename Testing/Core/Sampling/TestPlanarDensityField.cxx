@@ -2,6 +2,7 @@
 // as a scan of every point (per-point densities) or triangle centroid (per-triangle ones)
 // inside it, whether the triangles around it answer (small triangles) or the box tree does.
 #include "Sampling/PlanarDensityField.h"
+#include "Sampling/PlanarSampler.h"
 
 #include "RingDisk.h"
 
@@ -84,12 +85,16 @@ double scanMaximum(
   return largest;
 }
 
-void checkMaxima(bool crowded, bool perPoint)
+// `walking`: the field readied for a sampling as large as its triangles, whose queries walk
+// (and whose maxima over small triangles come from the triangles around them); else the box
+// tree answers all.
+void checkMaxima(bool crowded, bool perPoint, bool walking)
 {
   const Case c = ringCase(crowded, perPoint);
   std::string error;
   const auto field = DensityField::create(c.points, c.triangles, c.perPoint, c.perTriangle, error);
   ASSERT_TRUE(field) << error;
+  field->prepareForQueries(walking ? static_cast<long long>(c.triangles.size()) : 0);
   std::mt19937 random(5);
   std::uniform_real_distribution<double> unit(-1.0, 1.0), angle(0.0, 6.283185307179586);
   int queries = 0;
@@ -120,18 +125,48 @@ void checkMaxima(bool crowded, bool perPoint)
 
 TEST(DensityField, LargestValueOverATrianglePerPoint)
 {
-  checkMaxima(false, true);
+  checkMaxima(false, true, true);
+  checkMaxima(false, true, false);
 }
 
 TEST(DensityField, LargestValueOverATrianglePerTriangle)
 {
-  checkMaxima(false, false);
+  checkMaxima(false, false, true);
+  checkMaxima(false, false, false);
 }
 
 TEST(DensityField, LargestValueOverATriangleCrowded)
 {
-  checkMaxima(true, true);
-  checkMaxima(true, false);
+  checkMaxima(true, true, true);
+  checkMaxima(true, false, true);
+}
+
+// The same samples, to the bit, whether the field's queries walk or not (a sampling smaller
+// than the triangles does not ready the walk by itself).
+TEST(DensityField, WalkingQueriesGiveTheSameSamples)
+{
+  const Case c = ringCase(true, true);
+  SamplerOptions options;
+  options.numberOfSamples = 2000;
+  ASSERT_LT(options.numberOfSamples, static_cast<long long>(c.triangles.size()));
+  std::vector<std::vector<Vec2>> samples;
+  for (long long prepared : { 0LL, static_cast<long long>(c.triangles.size()) })
+  {
+    std::string error;
+    const auto field =
+      DensityField::create(c.points, c.triangles, c.perPoint, c.perTriangle, error);
+    ASSERT_TRUE(field) << error;
+    field->prepareForQueries(prepared);
+    const SamplerResult result = sampleDensity(*field, options);
+    ASSERT_TRUE(result.status.ok()) << result.status.error;
+    samples.push_back(result.samples);
+  }
+  ASSERT_EQ(samples[0].size(), samples[1].size());
+  for (size_t i = 0; i < samples[0].size(); ++i)
+  {
+    ASSERT_EQ(samples[0][i].x, samples[1][i].x) << i;
+    ASSERT_EQ(samples[0][i].y, samples[1][i].y) << i;
+  }
 }
 
 } // namespace
