@@ -122,6 +122,23 @@ TEST(TriangleWalk, AnswersOnlyWhereOneTriangleHoldsThePointInACrowdedMesh)
   checkWalk(ringMesh(true), 0.6); // 80%
 }
 
+TEST(TriangleWalk, AnswersOnlyWhereOneTriangleHoldsThePointAroundAHole)
+{
+  // The even disk less its triangles within 0.4 of the centre: walks that reach the hole's
+  // rim stop there, and points in the hole are left to the search.
+  Mesh mesh = ringMesh(false);
+  std::vector<Triangle> kept;
+  for (const Triangle& t : mesh.triangles)
+  {
+    if (norm((1.0 / 3.0) * (mesh.points[t[0]] + mesh.points[t[1]] + mesh.points[t[2]])) > 0.4)
+    {
+      kept.push_back(t);
+    }
+  }
+  mesh.triangles = kept;
+  checkWalk(mesh, 0.95);
+}
+
 TEST(TriangleWalk, EmptyMeshAnswersNothing)
 {
   const TriangleWalk walk({}, {});
