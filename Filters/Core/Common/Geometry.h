@@ -40,6 +40,13 @@ inline double norm(Vec2 a)
 {
   return std::hypot(a.x, a.y);
 }
+// Whether x lies to the right of the line from p to q by more than rounding: by more than
+// 1e-12 of the cross product's terms.
+inline bool rightOfBeyondRounding(Vec2 p, Vec2 q, Vec2 x)
+{
+  const Vec2 d = q - p, r = x - p;
+  return cross(d, r) < -1e-12 * (std::abs(d.x) + std::abs(d.y)) * (std::abs(r.x) + std::abs(r.y));
+}
 // The point of segment ab nearest to x (a and b distinct).
 inline Vec2 closestOnSegment(Vec2 x, Vec2 a, Vec2 b)
 {

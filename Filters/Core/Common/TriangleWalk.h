@@ -155,13 +155,6 @@ private:
   // A search over more triangles is left to a box tree, which prunes by their values.
   static constexpr int MaximumVisits = 48;
 
-  // Whether x lies to the right of the line from p to q by more than rounding.
-  static bool rightOf(Vec2 p, Vec2 q, Vec2 x)
-  {
-    const Vec2 d = q - p, r = x - p;
-    return cross(d, r) < -1e-12 * (std::abs(d.x) + std::abs(d.y)) * (std::abs(r.x) + std::abs(r.y));
-  }
-
   // False only when a line through an edge of the counter-clockwise abc, or through pq, has
   // the one on one side and the other on the other, apart by more than rounding (convex shapes
   // that do not meet are separated by a line through an edge of one of them).
@@ -169,13 +162,15 @@ private:
   {
     for (const auto& [u, v] : { std::pair{ a, b }, std::pair{ b, c }, std::pair{ c, a } })
     {
-      if (rightOf(u, v, p) && rightOf(u, v, q))
+      if (rightOfBeyondRounding(u, v, p) && rightOfBeyondRounding(u, v, q))
       {
         return false;
       }
     }
-    return !(rightOf(p, q, a) && rightOf(p, q, b) && rightOf(p, q, c)) &&
-      !(rightOf(q, p, a) && rightOf(q, p, b) && rightOf(q, p, c));
+    return !(rightOfBeyondRounding(p, q, a) && rightOfBeyondRounding(p, q, b) &&
+             rightOfBeyondRounding(p, q, c)) &&
+      !(rightOfBeyondRounding(q, p, a) && rightOfBeyondRounding(q, p, b) &&
+        rightOfBeyondRounding(q, p, c));
   }
 
   int cellOf(Vec2 x) const

@@ -505,7 +505,11 @@ bool DensityField::contains(Vec2 x) const
 
 double DensityField::value(Vec2 x) const
 {
-  int t = locate(x);
+  return this->valueAt(x, this->locate(x));
+}
+
+double DensityField::valueAt(Vec2 x, int t) const
+{
   if (t < 0)
   {
     // Outside (e.g. between the inscribed polygon and the circle): use the nearest boundary
@@ -598,7 +602,7 @@ double DensityField::maxInsideTriangle(Vec2 a, Vec2 b, Vec2 c, double atLeast) c
   }
   const Vec2 centre = (1.0 / 3.0) * (a + b + c);
   const int seed = this->locate(centre);
-  double largest = std::max(atLeast, seed >= 0 ? this->valueIn(seed, centre) : this->value(centre));
+  double largest = std::max(atLeast, this->valueAt(centre, seed));
   if (seed >= 0 && this->maximizeNearby(seed, a, b, c, largest))
   {
     return largest;
@@ -613,10 +617,7 @@ double DensityField::maxInsideTriangle(Vec2 a, Vec2 b, Vec2 c, double atLeast) c
     {
       const Vec2 d = q - p;
       const Vec2 corner = { d.y > 0.0 ? boxLo.x : boxHi.x, d.x > 0.0 ? boxHi.y : boxLo.y };
-      const Vec2 r = corner - p;
-      const double slack =
-        1e-12 * (std::abs(d.x) + std::abs(d.y)) * (std::abs(r.x) + std::abs(r.y));
-      if (cross(d, r) < -slack)
+      if (rightOfBeyondRounding(p, q, corner))
       {
         return false;
       }

@@ -76,6 +76,7 @@ private:
   int locate(Vec2 x) const; // triangle containing x, or -1
   int search(Vec2 x) const; // the same, by TriangleTree alone
   double valueIn(std::size_t t, Vec2 x) const; // the density of triangle t at x
+  double valueAt(Vec2 x, int t) const;         // value(x) where locate(x) gave t
   bool maximizeNearby(int seed, Vec2 a, Vec2 b, Vec2 c, double& largest) const;
   bool traceBoundaryLoops(std::string& error);
   bool checkLoopsDoNotCross(const std::unordered_map<int, int>& next, std::string& error) const;
