@@ -6,6 +6,7 @@
 
 #include "Common/Geometry.h"
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -42,6 +43,17 @@ inline double sphericalTriangleArea(Vec3 a, Vec3 b, Vec3 c)
 {
   const double triple = dot(a, cross(b - a, c - a));
   return 2.0 * atan2Small(triple, 1.0 + dot(a, b) + dot(b, c) + dot(c, a));
+}
+
+// Lambert's azimuthal equal-area projection, inverted: the unit disk onto the cap around the
+// north pole that holds `capShare` of the sphere's area, area-preservingly up to that factor
+// (the disk's centre to the pole, its circle to the cap's rim). x and y keep the relative
+// precision of w near the centre.
+inline Vec3 liftDiskToCap(Vec2 w, double capShare)
+{
+  const double r2 = w.x * w.x + w.y * w.y;
+  const double scale = 2.0 * std::sqrt(capShare * std::max(0.0, 1.0 - capShare * r2));
+  return { scale * w.x, scale * w.y, 1.0 - 2.0 * capShare * r2 };
 }
 
 // Area of a convex spherical polygon (fan from its first vertex).

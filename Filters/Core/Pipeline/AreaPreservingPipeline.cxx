@@ -1,6 +1,7 @@
 #include "Pipeline/AreaPreservingPipeline.h"
 
 #include "Conformal/GreenDiskMap.h"
+#include "Pipeline/LiftedDiskStart.h"
 
 #include "Common/Memory.h"
 #include "Common/SphericalGeometry.h"
@@ -969,6 +970,14 @@ void composeOnTheSphere(const AreaPreservingOptions& options, SphereParameteriza
     if (!run.composition.status.error.empty())
     {
       run.status.error = "composition: " + run.composition.status.error + ".";
+      if (run.startLiftedFromDisk)
+      {
+        run.status.error += " The map started from the surface's disk map lifted onto the "
+                            "sphere, because the conformal sphere map crowds a protrusion (a "
+                            "finger, a limb or a tail, too long for its width) beyond what staged "
+                            "transports on the sphere widen: cut the surface open closer to the "
+                            "protrusion, or map its parts separately.";
+      }
       return;
     }
     // As on the disk, the fill was mapped with the surface and is dropped now.
@@ -1017,6 +1026,43 @@ void untangleConformalStart(SphereParameterizationResult& run)
   computeSphereAreaDensity(mesh, run.startSphere, run.startDensity, perPoint);
 }
 
+// Where every staged transport on the sphere failed (run.sampling.status's error): the start
+// lifted from the disk (LiftedDiskStart.h), or the reason it gave added to the error.
+void startFromLiftedDiskMap(const AreaPreservingOptions& options, SphereParameterizationResult& run)
+{
+  const SurfaceMesh& mesh = run.conformal.surface.mesh;
+  LiftedDiskStart lifted = liftedDiskStart(options, mesh);
+  if (!lifted.error.empty())
+  {
+    if (lifted.error != "aborted")
+    {
+      run.sampling.status.error += " (The disk map of the surface less a patch of its body, "
+                                   "lifted onto the sphere, did not help either: " +
+        lifted.error + ")";
+    }
+    run.sampling.status.aborted = lifted.error == "aborted";
+    return;
+  }
+  run.startSphere = std::move(lifted.sphere);
+  std::vector<double> perPoint;
+  computeSphereAreaDensity(mesh, run.startSphere, run.startDensity, perPoint);
+  run.transportStages = lifted.diskStages + 1;
+  run.startLiftedFromDisk = true;
+  run.sampling.status = Status();
+  const std::int64_t centre = run.conformal.surface.originalPointIds[lifted.patchCentre];
+  std::ostringstream msg;
+  msg << "The conformal sphere map crowds part of the surface beyond what staged transports on "
+         "the sphere widen (a protrusion such as a finger, a limb or a tail, too long for its "
+         "width), so the map starts from the area-preserving disk map of the surface less a patch "
+         "of "
+      << 100.0 * lifted.patchShare << "% of its area around "
+      << (centre >= 0 ? "point " + std::to_string(centre) : std::string("a point of a hole's fill"))
+      << " (" << lifted.diskStages
+      << " staged transport(s) in the disk) and that patch's own disk map, both lifted onto the "
+         "sphere; the patch goes to the south pole, where angles are less faithful.";
+  run.status.warnings.push_back(msg.str()); // the last sampling replaces run.sampling
+}
+
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -1058,6 +1104,10 @@ SphereParameterizationResult parameterizeSphere(
         {
           transportInStages(options, attempts[k], run);
         }
+      }
+      if (!run.sampling.status.ok() && !run.sampling.status.aborted)
+      {
+        startFromLiftedDiskMap(options, run);
       }
       if (!run.sampling.status.ok())
       {

@@ -114,6 +114,9 @@ struct SphereParameterizationResult
   std::vector<double> startDensity;
   int transportStages = 0;
   std::int64_t startUntangledVertices = 0; // a folded conformal start, not crowded, untangled
+  // Where the sphere's staged transports all failed: the start lifted from the disk maps of the
+  // surface less a patch of its body and of that patch (Pipeline/LiftedDiskStart.h).
+  bool startLiftedFromDisk = false;
   SphereTransportStage transport;
   std::vector<Vec3> sampleImages; // T^-1 of each Dirac: its cell's centroid on the sphere
   SphereCompositionResult composition;

@@ -1,0 +1,279 @@
+#include "Mesh/DiskPatch.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <functional>
+#include <limits>
+#include <map>
+#include <queue>
+#include <utility>
+
+namespace otparam
+{
+
+namespace
+{
+// Whether the marked triangles form a disk: Euler characteristic V - E + F = 1 with their
+// boundary edges one closed loop (the patch grows by connected rings, so it is connected).
+bool isDisk(const SurfaceMesh& mesh, const std::vector<char>& inPatch)
+{
+  std::map<std::pair<int, int>, int> edgeUses; // undirected edge -> triangles using it
+  std::vector<char> used(mesh.points.size(), 0);
+  std::int64_t faces = 0;
+  for (size_t t = 0; t < mesh.triangles.size(); ++t)
+  {
+    if (!inPatch[t])
+    {
+      continue;
+    }
+    ++faces;
+    const Triangle& tri = mesh.triangles[t];
+    for (int k = 0; k < 3; ++k)
+    {
+      used[tri[k]] = 1;
+      const int a = tri[k], b = tri[(k + 1) % 3];
+      ++edgeUses[{ std::min(a, b), std::max(a, b) }];
+    }
+  }
+  const std::int64_t vertices = std::count(used.begin(), used.end(), 1);
+  const std::int64_t edges = static_cast<std::int64_t>(edgeUses.size());
+  // One loop: every boundary vertex has exactly two boundary edges, and walking them from one
+  // visits all.
+  std::map<int, std::vector<int>> boundaryNeighbours;
+  for (const auto& [edge, uses] : edgeUses)
+  {
+    if (uses == 1)
+    {
+      boundaryNeighbours[edge.first].push_back(edge.second);
+      boundaryNeighbours[edge.second].push_back(edge.first);
+    }
+  }
+  if (vertices - edges + faces != 1 || boundaryNeighbours.empty())
+  {
+    return false;
+  }
+  for (const auto& [v, neighbours] : boundaryNeighbours)
+  {
+    if (neighbours.size() != 2)
+    {
+      return false;
+    }
+  }
+  const int first = boundaryNeighbours.begin()->first;
+  int previous = first, current = boundaryNeighbours.begin()->second[0];
+  size_t length = 1;
+  while (current != first && length <= boundaryNeighbours.size())
+  {
+    const std::vector<int>& next = boundaryNeighbours[current];
+    const int following = next[0] == previous ? next[1] : next[0];
+    previous = current;
+    current = following;
+    ++length;
+  }
+  return current == first && length == boundaryNeighbours.size();
+}
+struct Neighbour
+{
+  int point;
+  double length;
+};
+
+std::vector<std::vector<Neighbour>> edgeGraph(const SurfaceMesh& mesh)
+{
+  std::vector<std::vector<Neighbour>> graph(mesh.points.size());
+  for (const Triangle& t : mesh.triangles)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      const int a = t[k], b = t[(k + 1) % 3];
+      const double length = norm(mesh.points[b] - mesh.points[a]);
+      // Each interior edge is listed by both of its triangles, once per direction.
+      graph[a].push_back({ b, length });
+      graph[b].push_back({ a, length });
+    }
+  }
+  return graph;
+}
+
+// A patch that stops growing below this share of its target wrapped around a protrusion (a
+// tube's rings stop being disks once they close around it).
+constexpr double BodyPatchReach = 0.8;
+
+// Dijkstra's distances along the edges from `source`.
+std::vector<double> distancesFrom(const std::vector<std::vector<Neighbour>>& graph, int source)
+{
+  std::vector<double> distance(graph.size(), std::numeric_limits<double>::infinity());
+  using Entry = std::pair<double, int>;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
+  distance[source] = 0.0;
+  queue.push({ 0.0, source });
+  while (!queue.empty())
+  {
+    const auto [d, v] = queue.top();
+    queue.pop();
+    if (d > distance[v])
+    {
+      continue;
+    }
+    for (const Neighbour& n : graph[v])
+    {
+      if (d + n.length < distance[n.point])
+      {
+        distance[n.point] = d + n.length;
+        queue.push({ distance[n.point], n.point });
+      }
+    }
+  }
+  return distance;
+}
+
+// The length of a patch's boundary; `area` gets its area.
+double boundaryLength(const SurfaceMesh& mesh, const std::vector<char>& inPatch, double& area)
+{
+  std::map<std::pair<int, int>, int> edgeUses;
+  area = 0.0;
+  for (size_t t = 0; t < mesh.triangles.size(); ++t)
+  {
+    if (!inPatch[t])
+    {
+      continue;
+    }
+    const Triangle& tri = mesh.triangles[t];
+    area += triangleArea(mesh, tri);
+    for (int k = 0; k < 3; ++k)
+    {
+      const int a = tri[k], b = tri[(k + 1) % 3];
+      ++edgeUses[{ std::min(a, b), std::max(a, b) }];
+    }
+  }
+  double length = 0.0;
+  for (const auto& [edge, uses] : edgeUses)
+  {
+    length += uses == 1 ? norm(mesh.points[edge.second] - mesh.points[edge.first]) : 0.0;
+  }
+  return length;
+}
+
+// A patch's boundary length over the square root of its area (`area`).
+double roundness(const SurfaceMesh& mesh, const std::vector<char>& inPatch, double& area)
+{
+  const double length = boundaryLength(mesh, inPatch, area);
+  return area > 0.0 ? length / std::sqrt(area) : 0.0;
+}
+
+} // namespace
+
+std::vector<char> bodyPatch(const SurfaceMesh& mesh, double share, int& centre, int candidates)
+{
+  centre = -1;
+  std::vector<char> best;
+  if (mesh.triangles.empty())
+  {
+    return best;
+  }
+  const auto graph = edgeGraph(mesh);
+  double total = 0.0;
+  for (const Triangle& t : mesh.triangles)
+  {
+    total += triangleArea(mesh, t);
+  }
+  std::vector<double> nearest = distancesFrom(graph, mesh.triangles[0][0]);
+  double roundest = -1.0;
+  for (int c = 0; c < candidates; ++c)
+  {
+    int candidate = -1;
+    for (size_t v = 0; v < nearest.size(); ++v)
+    {
+      if (std::isfinite(nearest[v]) && (candidate < 0 || nearest[v] > nearest[candidate]))
+      {
+        candidate = static_cast<int>(v);
+      }
+    }
+    if (candidate < 0 || nearest[candidate] == 0.0)
+    {
+      break;
+    }
+    std::vector<char> patch = growDiskPatch(mesh, candidate, share);
+    double area = 0.0;
+    const double r = patch.empty() ? -1.0 : roundness(mesh, patch, area);
+    if (area >= BodyPatchReach * share * total && r > roundest)
+    {
+      roundest = r;
+      best.swap(patch);
+      centre = candidate;
+    }
+    const std::vector<double> fromCandidate = distancesFrom(graph, candidate);
+    for (size_t v = 0; v < nearest.size(); ++v)
+    {
+      nearest[v] = std::min(nearest[v], fromCandidate[v]);
+    }
+  }
+  return best;
+}
+
+std::vector<char> growDiskPatch(const SurfaceMesh& mesh, int centre, double share)
+{
+  std::vector<std::vector<int>> neighbours(mesh.points.size()), trianglesAt(mesh.points.size());
+  double total = 0.0;
+  for (size_t t = 0; t < mesh.triangles.size(); ++t)
+  {
+    const Triangle& tri = mesh.triangles[t];
+    for (int k = 0; k < 3; ++k)
+    {
+      neighbours[tri[k]].push_back(tri[(k + 1) % 3]);
+      trianglesAt[tri[k]].push_back(static_cast<int>(t));
+    }
+    total += triangleArea(mesh, tri);
+  }
+  // Rings of vertices around the centre, their triangles added in order; ringEnds[k]: how many
+  // triangles the patch of k + 1 rings holds.
+  std::vector<char> reached(mesh.points.size(), 0), added(mesh.triangles.size(), 0);
+  std::vector<int> order, ringEnds, ring = { centre };
+  reached[centre] = 1;
+  double patchArea = 0.0;
+  while (!ring.empty() && patchArea < share * total)
+  {
+    std::vector<int> next;
+    for (int v : ring)
+    {
+      for (int t : trianglesAt[v])
+      {
+        if (!added[t])
+        {
+          added[t] = 1;
+          order.push_back(t);
+          patchArea += triangleArea(mesh, mesh.triangles[t]);
+        }
+      }
+      for (int w : neighbours[v])
+      {
+        if (!reached[w])
+        {
+          reached[w] = 1;
+          next.push_back(w);
+        }
+      }
+    }
+    ringEnds.push_back(static_cast<int>(order.size()));
+    ring.swap(next);
+  }
+  // The largest of those patches that is a disk (usually the last).
+  for (auto end = ringEnds.rbegin(); end != ringEnds.rend(); ++end)
+  {
+    std::vector<char> patch(mesh.triangles.size(), 0);
+    for (int k = 0; k < *end; ++k)
+    {
+      patch[order[k]] = 1;
+    }
+    if (isDisk(mesh, patch))
+    {
+      return patch;
+    }
+  }
+  return {};
+}
+
+} // namespace otparam
