@@ -2,13 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
-#include <cstdio>
-#include <cstdlib>
 #include <functional>
 #include <limits>
 #include <map>
 #include <queue>
+#include <unordered_map>
 #include <utility>
 
 namespace otparam
@@ -16,65 +16,52 @@ namespace otparam
 
 namespace
 {
-// Whether the marked triangles form a disk: Euler characteristic V - E + F = 1 with their
-// boundary edges one closed loop (the patch grows by connected rings, so it is connected).
-bool isDisk(const SurfaceMesh& mesh, const std::vector<char>& inPatch)
+// The topology of a patch growing triangle by triangle, in constant time per triangle: on a
+// genus-0 surface a connected patch is a disk when V - E + F = 1 and every boundary vertex has
+// two boundary edges (no pinch; then its boundary is one loop).
+class GrowingPatch
 {
-  std::map<std::pair<int, int>, int> edgeUses; // undirected edge -> triangles using it
-  std::vector<char> used(mesh.points.size(), 0);
-  std::int64_t faces = 0;
-  for (size_t t = 0; t < mesh.triangles.size(); ++t)
+public:
+  explicit GrowingPatch(std::size_t points)
+    : VertexUses(points, 0)
+    , BoundaryEdgesAt(points, 0)
   {
-    if (!inPatch[t])
-    {
-      continue;
-    }
-    ++faces;
-    const Triangle& tri = mesh.triangles[t];
+  }
+
+  void add(const Triangle& t)
+  {
+    ++this->Faces;
     for (int k = 0; k < 3; ++k)
     {
-      used[tri[k]] = 1;
-      const int a = tri[k], b = tri[(k + 1) % 3];
-      ++edgeUses[{ std::min(a, b), std::max(a, b) }];
+      this->Vertices += this->VertexUses[t[k]]++ == 0;
+      const int a = std::min(t[k], t[(k + 1) % 3]), b = std::max(t[k], t[(k + 1) % 3]);
+      const int uses = ++this->EdgeUses[(static_cast<std::uint64_t>(a) << 32) | b];
+      this->Edges += uses == 1;
+      for (int v : { a, b })
+      {
+        this->Pinches -= this->pinched(v);
+        this->BoundaryEdgesAt[v] += uses == 1 ? 1 : -1; // a new boundary edge, or one closed
+        this->Pinches += this->pinched(v);
+      }
     }
   }
-  const std::int64_t vertices = std::count(used.begin(), used.end(), 1);
-  const std::int64_t edges = static_cast<std::int64_t>(edgeUses.size());
-  // One loop: every boundary vertex has exactly two boundary edges, and walking them from one
-  // visits all.
-  std::map<int, std::vector<int>> boundaryNeighbours;
-  for (const auto& [edge, uses] : edgeUses)
+
+  bool isDisk() const
   {
-    if (uses == 1)
-    {
-      boundaryNeighbours[edge.first].push_back(edge.second);
-      boundaryNeighbours[edge.second].push_back(edge.first);
-    }
+    return this->Vertices - this->Edges + this->Faces == 1 && this->Pinches == 0;
   }
-  if (vertices - edges + faces != 1 || boundaryNeighbours.empty())
+
+private:
+  bool pinched(int v) const
   {
-    return false;
+    return this->BoundaryEdgesAt[v] != 0 && this->BoundaryEdgesAt[v] != 2;
   }
-  for (const auto& [v, neighbours] : boundaryNeighbours)
-  {
-    if (neighbours.size() != 2)
-    {
-      return false;
-    }
-  }
-  const int first = boundaryNeighbours.begin()->first;
-  int previous = first, current = boundaryNeighbours.begin()->second[0];
-  size_t length = 1;
-  while (current != first && length <= boundaryNeighbours.size())
-  {
-    const std::vector<int>& next = boundaryNeighbours[current];
-    const int following = next[0] == previous ? next[1] : next[0];
-    previous = current;
-    current = following;
-    ++length;
-  }
-  return current == first && length == boundaryNeighbours.size();
-}
+
+  std::vector<int> VertexUses, BoundaryEdgesAt;
+  std::unordered_map<std::uint64_t, int> EdgeUses;
+  std::int64_t Vertices = 0, Edges = 0, Faces = 0, Pinches = 0;
+};
+
 struct Neighbour
 {
   int point;
@@ -228,11 +215,13 @@ std::vector<char> growDiskPatch(const SurfaceMesh& mesh, int centre, double shar
     }
     total += triangleArea(mesh, tri);
   }
-  // Rings of vertices around the centre, their triangles added in order; ringEnds[k]: how many
-  // triangles the patch of k + 1 rings holds.
+  // Rings of vertices around the centre, their triangles added ring by ring; the patch of the
+  // last ring at which it was a disk is kept.
   std::vector<char> reached(mesh.points.size(), 0), added(mesh.triangles.size(), 0);
-  std::vector<int> order, ringEnds, ring = { centre };
+  std::vector<int> order, ring = { centre };
   reached[centre] = 1;
+  GrowingPatch topology(mesh.points.size());
+  std::size_t diskEnd = 0;
   double patchArea = 0.0;
   while (!ring.empty() && patchArea < share * total)
   {
@@ -245,6 +234,7 @@ std::vector<char> growDiskPatch(const SurfaceMesh& mesh, int centre, double shar
         {
           added[t] = 1;
           order.push_back(t);
+          topology.add(mesh.triangles[t]);
           patchArea += triangleArea(mesh, mesh.triangles[t]);
         }
       }
@@ -257,23 +247,19 @@ std::vector<char> growDiskPatch(const SurfaceMesh& mesh, int centre, double shar
         }
       }
     }
-    ringEnds.push_back(static_cast<int>(order.size()));
+    diskEnd = topology.isDisk() ? order.size() : diskEnd;
     ring.swap(next);
   }
-  // The largest of those patches that is a disk (usually the last).
-  for (auto end = ringEnds.rbegin(); end != ringEnds.rend(); ++end)
+  std::vector<char> patch;
+  if (diskEnd > 0)
   {
-    std::vector<char> patch(mesh.triangles.size(), 0);
-    for (int k = 0; k < *end; ++k)
+    patch.assign(mesh.triangles.size(), 0);
+    for (std::size_t k = 0; k < diskEnd; ++k)
     {
       patch[order[k]] = 1;
     }
-    if (isDisk(mesh, patch))
-    {
-      return patch;
-    }
   }
-  return {};
+  return patch;
 }
 
 } // namespace otparam

@@ -13,7 +13,7 @@ namespace otparam
 // The triangles with a corner within k edges of `centre` (per triangle, 1 inside), for the
 // smallest k whose patch holds at least `share` of the surface's area, or the largest k whose
 // patch is still a disk (connected, one boundary loop, Euler characteristic 1) if that one is
-// not. Empty when not even the centre's star is such a disk.
+// not. Empty when there is none.
 std::vector<char> growDiskPatch(const SurfaceMesh& mesh, int centre, double share);
 
 // Of the disk patches growDiskPatch grows around `candidates` points spread over the surface

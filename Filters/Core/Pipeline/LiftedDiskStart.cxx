@@ -116,9 +116,12 @@ LiftedDiskStart liftedDiskStart(const AreaPreservingOptions& options, const Surf
   LiftedDiskStart start;
   // The disk runs report nothing, only ask whether to go on (at the sphere run's sampling stage,
   // which starts at 0.15 of its progress).
+  // The disk's normalization points name ids of the user's disk surface, not of this one.
   AreaPreservingOptions diskOptions = options;
   diskOptions.progress = [&options](const char*, double)
   { return !options.progress || options.progress("sampling", 0.15); };
+  diskOptions.conformal.centerPointId = -1;
+  diskOptions.conformal.alignPointId = -1;
   // The largest body patch whose rest the disk pipeline maps and whose lift does not fold (on
   // the closed finger at L / rho = 64 a patch of 45% mapped, one of 32% did not).
   for (const double share : LiftedPatchShares)
