@@ -16,16 +16,16 @@ namespace otparam
 
 namespace
 {
-// The triangles with inPatch[t] == `side` as a soup of the points they use; `meshPoint` gets
-// each soup point's mesh point.
-TriangleSoup partOfSurface(
-  const SurfaceMesh& mesh, const std::vector<char>& inPatch, char side, std::vector<int>& meshPoint)
+// The triangles outside the patch as a soup of the points they use; `meshPoint` gets each
+// soup point's mesh point.
+TriangleSoup restOfSurface(
+  const SurfaceMesh& mesh, const std::vector<char>& inPatch, std::vector<int>& meshPoint)
 {
-  TriangleSoup part;
+  TriangleSoup rest;
   std::vector<std::int64_t> id(mesh.points.size(), -1);
   for (size_t t = 0; t < mesh.triangles.size(); ++t)
   {
-    if (inPatch[t] != side)
+    if (inPatch[t])
     {
       continue;
     }
@@ -35,15 +35,15 @@ TriangleSoup partOfSurface(
       const int v = mesh.triangles[t][k];
       if (id[v] < 0)
       {
-        id[v] = static_cast<std::int64_t>(part.points.size());
-        part.points.push_back(mesh.points[v]);
+        id[v] = static_cast<std::int64_t>(rest.points.size());
+        rest.points.push_back(mesh.points[v]);
         meshPoint.push_back(v);
       }
       corners[k] = id[v];
     }
-    part.triangles.push_back(corners);
+    rest.triangles.push_back(corners);
   }
-  return part;
+  return rest;
 }
 
 // Lambert's lift of the patch's disk onto the cap around the south pole holding `share`: the
@@ -135,7 +135,7 @@ LiftedDiskStart liftedDiskStart(const AreaPreservingOptions& options, const Surf
     }
     std::vector<int> meshPoint;
     const AreaPreservingResult disk =
-      parameterizeDisk(partOfSurface(mesh, inPatch, 0, meshPoint), diskOptions);
+      parameterizeDisk(restOfSurface(mesh, inPatch, meshPoint), diskOptions);
     if (disk.status.aborted)
     {
       start.error = "aborted";

@@ -14,14 +14,15 @@ namespace otparam
 // A closed surface's conformal sphere map collapses a long protrusion below the absolute
 // precision of unit vectors (~1e-16: the closed finger at L / rho = 64 leaves 3712 of its 12576
 // triangles not positive), while the disk's staged transports keep a protrusion's tip at the
-// origin in relative precision (GreenDiskMap.h). So: a patch of LiftedPatchShare of the area in the
-// surface's wide body (roundestDiskPatch: not on a protrusion, around which a disk map's boundary
-// loop would be short and squeeze the rest) is cut out, the rest mapped onto the disk
-// area-preservingly by parameterizeDisk, the patch onto the disk by Tutte's embedding with its
-// boundary where the rest's map put it, and both disks lifted onto the sphere by Lambert's
-// equal-area projection: the rest onto the cap around the north pole holding its share of the area,
-// the patch onto the one around the south pole. The start is area-preserving but for the patch, so
-// the last transport on the sphere only corrects it.
+// origin in relative precision (GreenDiskMap.h). So:
+// - a patch of the surface's body is cut out (bodyPatch: not on a protrusion, around which a
+//   disk map's boundary loop would be short and squeeze the rest), LiftedPatchShares in turn;
+// - the rest is mapped onto the disk area-preservingly by parameterizeDisk, the patch by Tutte's
+//   embedding with its boundary where the rest's map put it;
+// - the rest's disk is lifted onto a cap around the north pole by the gnomonic projection (edges
+//   to great circles: the rest's long thin ring triangles cannot fold), the patch's onto the
+//   rest of the sphere by Lambert's equal-area projection.
+// The last transport on the sphere then corrects that start's areas.
 struct LiftedDiskStart
 {
   std::string error;        // why there is no start ("" when `sphere` holds it)
