@@ -1,5 +1,7 @@
 #include "Mesh/DiskPatch.h"
 
+#include "Common/DirectedEdges.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -34,8 +36,8 @@ public:
     for (int k = 0; k < 3; ++k)
     {
       this->Vertices += this->VertexUses[t[k]]++ == 0;
-      const int a = std::min(t[k], t[(k + 1) % 3]), b = std::max(t[k], t[(k + 1) % 3]);
-      const int uses = ++this->EdgeUses[(static_cast<std::uint64_t>(a) << 32) | b];
+      const int a = t[k], b = t[(k + 1) % 3];
+      const int uses = ++this->EdgeUses[directedEdgeKey(a, b) >> 1]; // the undirected edge
       this->Edges += uses == 1;
       for (int v : { a, b })
       {
@@ -62,6 +64,80 @@ private:
   std::int64_t Vertices = 0, Edges = 0, Faces = 0, Pinches = 0;
 };
 
+// What growing patches reads of the mesh, made once for all of bodyPatch's candidates.
+struct TriangleFans
+{
+  std::vector<std::vector<int>> trianglesAt; // per point
+  std::vector<double> area;                  // per triangle
+  double total = 0.0;
+
+  explicit TriangleFans(const SurfaceMesh& mesh)
+    : trianglesAt(mesh.points.size())
+    , area(mesh.triangles.size())
+  {
+    for (size_t t = 0; t < mesh.triangles.size(); ++t)
+    {
+      for (int v : mesh.triangles[t])
+      {
+        this->trianglesAt[v].push_back(static_cast<int>(t));
+      }
+      this->area[t] = triangleArea(mesh, mesh.triangles[t]);
+      this->total += this->area[t];
+    }
+  }
+};
+
+// growDiskPatch on the fans.
+std::vector<char> growDiskPatchOn(
+  const SurfaceMesh& mesh, const TriangleFans& fans, int centre, double share)
+{
+  // Rings of vertices around the centre (the corners of the last ring's triangles), their
+  // triangles added ring by ring; the patch of the last ring at which it was a disk is kept.
+  std::vector<char> reached(mesh.points.size(), 0), added(mesh.triangles.size(), 0);
+  std::vector<int> order, ring = { centre };
+  reached[centre] = 1;
+  GrowingPatch topology(mesh.points.size());
+  std::size_t diskEnd = 0;
+  double patchArea = 0.0;
+  while (!ring.empty() && patchArea < share * fans.total)
+  {
+    std::vector<int> next;
+    for (int v : ring)
+    {
+      for (int t : fans.trianglesAt[v])
+      {
+        if (!added[t])
+        {
+          added[t] = 1;
+          order.push_back(t);
+          topology.add(mesh.triangles[t]);
+          patchArea += fans.area[t];
+        }
+        for (int w : mesh.triangles[t])
+        {
+          if (!reached[w])
+          {
+            reached[w] = 1;
+            next.push_back(w);
+          }
+        }
+      }
+    }
+    diskEnd = topology.isDisk() ? order.size() : diskEnd;
+    ring.swap(next);
+  }
+  std::vector<char> patch;
+  if (diskEnd > 0)
+  {
+    patch.assign(mesh.triangles.size(), 0);
+    for (std::size_t k = 0; k < diskEnd; ++k)
+    {
+      patch[order[k]] = 1;
+    }
+  }
+  return patch;
+}
+
 struct Neighbour
 {
   int point;
@@ -75,11 +151,9 @@ std::vector<std::vector<Neighbour>> edgeGraph(const SurfaceMesh& mesh)
   {
     for (int k = 0; k < 3; ++k)
     {
+      // A closed surface's edge is met once in each direction, by its two triangles.
       const int a = t[k], b = t[(k + 1) % 3];
-      const double length = norm(mesh.points[b] - mesh.points[a]);
-      // Each interior edge is listed by both of its triangles, once per direction.
-      graph[a].push_back({ b, length });
-      graph[b].push_back({ a, length });
+      graph[a].push_back({ b, norm(mesh.points[b] - mesh.points[a]) });
     }
   }
   return graph;
@@ -118,7 +192,8 @@ std::vector<double> distancesFrom(const std::vector<std::vector<Neighbour>>& gra
 }
 
 // The length of a patch's boundary; `area` gets its area.
-double boundaryLength(const SurfaceMesh& mesh, const std::vector<char>& inPatch, double& area)
+double boundaryLength(
+  const SurfaceMesh& mesh, const TriangleFans& fans, const std::vector<char>& inPatch, double& area)
 {
   std::map<std::pair<int, int>, int> edgeUses;
   area = 0.0;
@@ -129,7 +204,7 @@ double boundaryLength(const SurfaceMesh& mesh, const std::vector<char>& inPatch,
       continue;
     }
     const Triangle& tri = mesh.triangles[t];
-    area += triangleArea(mesh, tri);
+    area += fans.area[t];
     for (int k = 0; k < 3; ++k)
     {
       const int a = tri[k], b = tri[(k + 1) % 3];
@@ -145,9 +220,10 @@ double boundaryLength(const SurfaceMesh& mesh, const std::vector<char>& inPatch,
 }
 
 // A patch's boundary length over the square root of its area (`area`).
-double roundness(const SurfaceMesh& mesh, const std::vector<char>& inPatch, double& area)
+double roundness(
+  const SurfaceMesh& mesh, const TriangleFans& fans, const std::vector<char>& inPatch, double& area)
 {
-  const double length = boundaryLength(mesh, inPatch, area);
+  const double length = boundaryLength(mesh, fans, inPatch, area);
   return area > 0.0 ? length / std::sqrt(area) : 0.0;
 }
 
@@ -162,11 +238,7 @@ std::vector<char> bodyPatch(const SurfaceMesh& mesh, double share, int& centre, 
     return best;
   }
   const auto graph = edgeGraph(mesh);
-  double total = 0.0;
-  for (const Triangle& t : mesh.triangles)
-  {
-    total += triangleArea(mesh, t);
-  }
+  const TriangleFans fans(mesh);
   std::vector<double> nearest = distancesFrom(graph, mesh.triangles[0][0]);
   double roundest = -1.0;
   for (int c = 0; c < candidates; ++c)
@@ -183,10 +255,10 @@ std::vector<char> bodyPatch(const SurfaceMesh& mesh, double share, int& centre, 
     {
       break;
     }
-    std::vector<char> patch = growDiskPatch(mesh, candidate, share);
+    std::vector<char> patch = growDiskPatchOn(mesh, fans, candidate, share);
     double area = 0.0;
-    const double r = patch.empty() ? -1.0 : roundness(mesh, patch, area);
-    if (area >= BodyPatchReach * share * total && r > roundest)
+    const double r = patch.empty() ? -1.0 : roundness(mesh, fans, patch, area);
+    if (area >= BodyPatchReach * share * fans.total && r > roundest)
     {
       roundest = r;
       best.swap(patch);
@@ -203,63 +275,7 @@ std::vector<char> bodyPatch(const SurfaceMesh& mesh, double share, int& centre, 
 
 std::vector<char> growDiskPatch(const SurfaceMesh& mesh, int centre, double share)
 {
-  std::vector<std::vector<int>> neighbours(mesh.points.size()), trianglesAt(mesh.points.size());
-  double total = 0.0;
-  for (size_t t = 0; t < mesh.triangles.size(); ++t)
-  {
-    const Triangle& tri = mesh.triangles[t];
-    for (int k = 0; k < 3; ++k)
-    {
-      neighbours[tri[k]].push_back(tri[(k + 1) % 3]);
-      trianglesAt[tri[k]].push_back(static_cast<int>(t));
-    }
-    total += triangleArea(mesh, tri);
-  }
-  // Rings of vertices around the centre, their triangles added ring by ring; the patch of the
-  // last ring at which it was a disk is kept.
-  std::vector<char> reached(mesh.points.size(), 0), added(mesh.triangles.size(), 0);
-  std::vector<int> order, ring = { centre };
-  reached[centre] = 1;
-  GrowingPatch topology(mesh.points.size());
-  std::size_t diskEnd = 0;
-  double patchArea = 0.0;
-  while (!ring.empty() && patchArea < share * total)
-  {
-    std::vector<int> next;
-    for (int v : ring)
-    {
-      for (int t : trianglesAt[v])
-      {
-        if (!added[t])
-        {
-          added[t] = 1;
-          order.push_back(t);
-          topology.add(mesh.triangles[t]);
-          patchArea += triangleArea(mesh, mesh.triangles[t]);
-        }
-      }
-      for (int w : neighbours[v])
-      {
-        if (!reached[w])
-        {
-          reached[w] = 1;
-          next.push_back(w);
-        }
-      }
-    }
-    diskEnd = topology.isDisk() ? order.size() : diskEnd;
-    ring.swap(next);
-  }
-  std::vector<char> patch;
-  if (diskEnd > 0)
-  {
-    patch.assign(mesh.triangles.size(), 0);
-    for (std::size_t k = 0; k < diskEnd; ++k)
-    {
-      patch[order[k]] = 1;
-    }
-  }
-  return patch;
+  return growDiskPatchOn(mesh, TriangleFans(mesh), centre, share);
 }
 
 } // namespace otparam

@@ -1032,15 +1032,16 @@ void startFromLiftedDiskMap(const AreaPreservingOptions& options, SphereParamete
 {
   const SurfaceMesh& mesh = run.conformal.surface.mesh;
   LiftedDiskStart lifted = liftedDiskStart(options, mesh);
+  if (lifted.aborted)
+  {
+    run.sampling.status.aborted = true;
+    return;
+  }
   if (!lifted.error.empty())
   {
-    if (lifted.error != "aborted")
-    {
-      run.sampling.status.error += " (The disk map of the surface less a patch of its body, "
-                                   "lifted onto the sphere, did not help either: " +
-        lifted.error + ")";
-    }
-    run.sampling.status.aborted = lifted.error == "aborted";
+    run.sampling.status.error += " (The disk map of the surface less a patch of its body, "
+                                 "lifted onto the sphere, did not help either: " +
+      lifted.error + ")";
     return;
   }
   run.startSphere = std::move(lifted.sphere);

@@ -138,7 +138,8 @@ LiftedDiskStart liftedDiskStart(const AreaPreservingOptions& options, const Surf
       parameterizeDisk(restOfSurface(mesh, inPatch, meshPoint), diskOptions);
     if (disk.status.aborted)
     {
-      start.error = "aborted";
+      start.aborted = true;
+      start.error.clear();
       return start;
     }
     double patchArea = 0.0, totalArea = 0.0;

@@ -26,6 +26,7 @@ namespace otparam
 struct LiftedDiskStart
 {
   std::string error;        // why there is no start ("" when `sphere` holds it)
+  bool aborted = false;     // the progress callback asked to stop (then no error)
   std::vector<Vec3> sphere; // one per point of the mesh
   int patchCentre = -1;
   double patchShare = 0.0; // of the surface's area
